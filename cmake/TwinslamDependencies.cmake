@@ -1,0 +1,18 @@
+# All third-party packages come from Debian 12 (see ../shared/NOTES-dependencies.md for the measured names and pitfalls).
+# The list of Debian packages that provides them is in scripts/packages.txt; keep both in step.
+find_package(Threads REQUIRED)
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs video features2d calib3d)
+find_package(fastcdr REQUIRED)
+find_package(fastrtps REQUIRED)   # Fast DDS 2.9 (find_package(fastdds) is 3.x and not in Debian 12)
+find_program(FASTDDSGEN fastddsgen REQUIRED)
+if(TWINSLAM_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(TWINSLAM_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()
