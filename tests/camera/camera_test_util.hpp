@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <ostream>
 
 #include "twinslam/camera/camera_model.hpp"
 
@@ -22,6 +23,17 @@ inline CameraIntrinsics euroc_cam0() {
   in.coefficients = {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05};
   return in;
 }
+
+}  // namespace twinslam::test
+
+namespace twinslam {
+// Short gtest names for parameterized tests (instead of a byte dump).
+inline void PrintTo(const CameraIntrinsics& in, std::ostream* os) {
+  *os << to_string(in.distortion) << " " << in.width << "x" << in.height << " f=" << in.fu;
+}
+}  // namespace twinslam
+
+namespace twinslam::test {
 
 // Central differences of f: R^n -> R^m at x, step h per coordinate.
 template <int M, int N>

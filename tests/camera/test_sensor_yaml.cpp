@@ -43,7 +43,7 @@ TEST(CameraSensorYaml, ReadsTheRealEurocCam0Calibration) {
 }
 
 // A fresh temporary folder per test process, removed at the end.
-class TempDir : public ::testing::Test {
+class CameraYamlFiles : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("twinslam_camera_test_" + std::to_string(::getpid()));
@@ -86,7 +86,9 @@ struct Malformed {
   std::string key;      // the key the message must name
 };
 
-class MalformedSensorYaml : public TempDir, public ::testing::WithParamInterface<Malformed> {};
+void PrintTo(const Malformed& m, std::ostream* os) { *os << m.name; }
+
+class MalformedSensorYaml : public CameraYamlFiles, public ::testing::WithParamInterface<Malformed> {};
 
 TEST_P(MalformedSensorYaml, ThrowsInputErrorNamingFileAndKey) {
   const Malformed& m = GetParam();
@@ -134,7 +136,7 @@ INSTANTIATE_TEST_SUITE_P(
         Malformed{"missing_T_BS_data", "  data:", "", "T_BS.data"}),
     [](const auto& info) { return info.param.name; });
 
-TEST_F(TempDir, SyntaxErrorsAndMissingFilesNameTheFile) {
+TEST_F(CameraYamlFiles, SyntaxErrorsAndMissingFilesNameTheFile) {
   const fs::path bad = write("syntax.yaml", "intrinsics: [1, 2\nresolution: {\n");
   try {
     read_camera_sensor_yaml(bad);
@@ -154,7 +156,7 @@ TEST_F(TempDir, SyntaxErrorsAndMissingFilesNameTheFile) {
   EXPECT_THROW(read_camera_sensor_yaml(write("list.yaml", "- 1\n- 2\n")), InputError);
 }
 
-TEST_F(TempDir, ErrorsReportTheLineOfTheBadValue) {
+TEST_F(CameraYamlFiles, ErrorsReportTheLineOfTheBadValue) {
   const fs::path file = write("line.yaml", "%YAML:1.0\n" + replace_line(kGood, "rate_hz:", "rate_hz: -5"));
   try {
     read_camera_sensor_yaml(file);
@@ -171,7 +173,7 @@ TEST_F(TempDir, ErrorsReportTheLineOfTheBadValue) {
   }
 }
 
-TEST_F(TempDir, AcceptsTheAliasesOfTheDistortionModels) {
+TEST_F(CameraYamlFiles, AcceptsTheAliasesOfTheDistortionModels) {
   const auto fisheye = read_camera_sensor_yaml(
       write("fisheye.yaml", replace_line(kGood, "distortion_model:", "distortion_model: fisheye")));
   EXPECT_EQ(fisheye.intrinsics.distortion, DistortionModel::kEquidistant);
@@ -180,7 +182,7 @@ TEST_F(TempDir, AcceptsTheAliasesOfTheDistortionModels) {
   EXPECT_EQ(radtan.intrinsics.distortion, DistortionModel::kRadialTangential);
 }
 
-TEST_F(TempDir, WhatIsWrittenReadsBackIdentically) {
+TEST_F(CameraYamlFiles, WhatIsWrittenReadsBackIdentically) {
   CameraConfig fisheye;
   fisheye.intrinsics.distortion = DistortionModel::kEquidistant;
   fisheye.intrinsics.width = 640;
@@ -217,7 +219,7 @@ TEST_F(TempDir, WhatIsWrittenReadsBackIdentically) {
   EXPECT_NE(text.find("distortion_model: equidistant\n"), std::string::npos);
 }
 
-TEST_F(TempDir, WritingAnInvalidConfigOrToAMissingFolderFails) {
+TEST_F(CameraYamlFiles, WritingAnInvalidConfigOrToAMissingFolderFails) {
   CameraConfig c;
   c.rate_hz = 0.0;
   EXPECT_THROW(write_camera_sensor_yaml(dir_ / "x.yaml", c), InputError);
