@@ -38,7 +38,11 @@ void text(cv::Mat& img, const std::string& s, cv::Point anchor, double scale, in
 std::string format(double v, int decimals) {
   char buf[32];
   if (std::abs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;  // no "-0.0"
-  std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
+  if (decimals > 4) {
+    std::snprintf(buf, sizeof(buf), "%.3g", v);  // tiny steps: "2.5e-07", not a margin-wide "0.00000025"
+  } else {
+    std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
+  }
   return buf;
 }
 
@@ -65,7 +69,7 @@ cv::Point Frame::to_px(double x, double y) const {
   return cv::Point(static_cast<int>(std::lround(u * (1 << kShift))), static_cast<int>(std::lround(v * (1 << kShift))));
 }
 
-cv::Rect plot_area(int width, int height) { return cv::Rect(95, 55, width - 95 - 30, height - 55 - 75); }
+cv::Rect plot_area(int width, int height) { return cv::Rect(105, 55, width - 105 - 30, height - 55 - 75); }
 
 namespace {
 
@@ -130,7 +134,7 @@ cv::Mat draw_frame(int width, int height, const Frame& f, const std::string& tit
   cv::rectangle(img, a, kInk, 1);
   text(img, title, {a.x + a.width / 2, 18}, 0.75, 2, 0.5, 0.0);
   text(img, xlabel, {a.x + a.width / 2, height - 28}, 0.6, 1, 0.5, 0.0);
-  vertical_text(img, ylabel, {22, a.y + a.height / 2}, 0.6);
+  vertical_text(img, ylabel, {20, a.y + a.height / 2}, 0.6);
   return img;
 }
 
