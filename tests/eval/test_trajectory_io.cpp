@@ -109,6 +109,12 @@ TEST_F(TrajectoryIo, DatasetFolderPrefersGroundtruthTum) {
   EXPECT_EQ(read_trajectory_any(dir_ / "ds/mav0/state_groundtruth_estimate0/data.csv").poses[0].p_X().x(), 9.0);
   fs::create_directories(dir_ / "empty_ds");
   EXPECT_THROW(read_dataset_groundtruth(dir_ / "empty_ds"), InputError);
+  try {
+    read_trajectory_any(dir_ / "empty_ds");
+    FAIL() << "empty folder accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("neither a run folder"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(TrajectoryIo, RunFolderReadsTrajectoryTum) {

@@ -55,17 +55,24 @@ void add_eval_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--gt", opts->gt,
                   "Ground truth: dataset folder (groundtruth.tum or EuRoC mav0/state_groundtruth_estimate0/data.csv), "
                   "EuRoC .csv or TUM file")
+      ->type_name("DIR|FILE")
       ->required();
-  cmd->add_option("--est", opts->est, "Estimate: run folder (its trajectory.tum) or TUM file")->required();
+  cmd->add_option("--est", opts->est, "Estimate: run folder (its trajectory.tum) or TUM file")
+      ->type_name("RUN|FILE")
+      ->required();
   cmd->add_option("--align", opts->align,
                   "Alignment before ATE: none (estimate already in W), posyaw (4-DoF, VIO), se3, sim3 (monocular)")
+      ->type_name("MODE")
       ->capture_default_str();
   cmd->add_option("--align-first", opts->align_first, "Align on the first N associated poses only (0 = all)")
+      ->type_name("N")
       ->capture_default_str();
   cmd->add_option("--max-dt-ms", opts->max_dt_ms, "Association window: largest |dt| between paired stamps [ms]")
+      ->type_name("MS")
       ->capture_default_str();
   cmd->add_flag("--json", opts->json, "Print one JSON object on stdout instead of the table");
-  cmd->add_option("--plots", opts->plots, "Write PNG plots (trajectory views, errors over time, RPE) into DIR");
+  cmd->add_option("--plots", opts->plots, "Write PNG plots (trajectory views, errors over time, RPE) into DIR")
+      ->type_name("DIR");
   cmd->callback([opts, &exit_code] { exit_code = run_eval(*opts); });
 }
 

@@ -49,10 +49,14 @@ nlohmann::json to_json(const EvalResult& r) {
 
 std::string format_table(const EvalResult& r) {
   char head[256];
-  std::snprintf(head, sizeof(head),
-                "align %s (%zu pairs, scale %.4f)  associated %zu of %zu estimate poses  length %.1f m\n",
-                to_string(r.align).c_str(), r.align_pairs, r.S_WL.scale, r.n, r.n_est, r.length_m);
-  std::string out = head;
+  std::string out = "align " + to_string(r.align);
+  if (r.align != AlignMode::None) {
+    std::snprintf(head, sizeof(head), " (on %zu pairs, scale %.4f)", r.align_pairs, r.S_WL.scale);
+    out += head;
+  }
+  std::snprintf(head, sizeof(head), "  associated %zu of %zu estimate poses  length %.1f m\n", r.n, r.n_est,
+                r.length_m);
+  out += head;
   const char* row = "%-12s %10.4f %10.4f %10.4f %10.4f %10.4f %10.4f\n";
   out += "ATE             rmse       mean     median        std        min        max\n";
   const auto& p = r.ate.pos;

@@ -22,9 +22,14 @@ Trajectory read_run_trajectory(const fs::path& dir) {
 
 Trajectory read_trajectory_any(const fs::path& path) {
   if (fs::is_directory(path)) {
-    // A run folder has trajectory.tum; anything else is treated as a dataset folder (which says what is missing).
     if (fs::is_regular_file(path / "trajectory.tum")) return read_run_trajectory(path);
-    return read_dataset_groundtruth(path);
+    if (fs::is_regular_file(path / "groundtruth.tum") ||
+        fs::is_regular_file(path / "mav0" / "state_groundtruth_estimate0" / "data.csv")) {
+      return read_dataset_groundtruth(path);
+    }
+    throw InputError(where(path.string(), 0,
+                           "neither a run folder (trajectory.tum) nor a dataset folder (groundtruth.tum or "
+                           "mav0/state_groundtruth_estimate0/data.csv)"));
   }
   if (!fs::exists(path)) throw InputError(where(path.string(), 0, "no such file or folder"));
   if (path.extension() == ".csv") return read_euroc_groundtruth(path);
