@@ -172,6 +172,10 @@ TEST(ImuFactor, ResidualVanishesAtTheTrueStates) {
   const Blocks y(si, off);
   ASSERT_TRUE(factor.Evaluate(y.params, whitened.data(), nullptr));
   EXPECT_GT(whitened.norm(), 3.0);
+  // The factor whitens exactly with the square-root information: r^T Sigma^-1 r.
+  const est::Vector15d r_off = est::imu_residual(*pre, si, off, ts::kGravity_W);
+  const double mahalanobis2 = r_off.dot(pre->residual_covariance().inverse() * r_off);
+  EXPECT_NEAR(whitened.squaredNorm(), mahalanobis2, 1e-9 * mahalanobis2);
 }
 
 TEST(ImuFactor, CeresRecoversStateJFromStateI) {

@@ -130,24 +130,36 @@ void Preintegration::step(const ImuSample& a, const ImuSample& b) {
     A_ba = -R0;
   }
 
-  Matrix9d F = Matrix9d::Identity();
-  F.block<3, 3>(0, 0) = dRk.transpose();
-  F.block<3, 3>(3, 0) = A_phi * h;
-  F.block<3, 3>(6, 0) = 0.5 * A_phi * h * h;
-  F.block<3, 3>(6, 3) = Eigen::Matrix3d::Identity() * h;
-  Eigen::Matrix<double, 9, 6> G;  // columns: gyro bias/noise, accel bias/noise
-  G.block<3, 3>(0, 0) = -Jr * h;
-  G.block<3, 3>(3, 0) = A_bg * h;
-  G.block<3, 3>(6, 0) = 0.5 * A_bg * h * h;
-  G.block<3, 3>(0, 3).setZero();
-  G.block<3, 3>(3, 3) = A_ba * h;
-  G.block<3, 3>(6, 3) = 0.5 * A_ba * h * h;
+  // Error-state transition F = [F_RR 0 0; F_vR I 0; F_pR hI I] and input matrix G = [G_Rg 0; G_vg G_va; G_pg G_pa].
+  const Eigen::Matrix3d F_RR = dRk.transpose();
+  const Eigen::Matrix3d F_vR = A_phi * h;
+  const Eigen::Matrix3d F_pR = 0.5 * A_phi * h * h;
+  const Eigen::Matrix3d G_g[3] = {-Jr * h, A_bg * h, 0.5 * A_bg * h * h};
+  const Eigen::Matrix3d G_a[3] = {Eigen::Matrix3d::Zero(), A_ba * h, 0.5 * A_ba * h * h};
 
-  // Discrete white noise of the sample interval: Cov(eta_d) = sigma^2 / h (Forster eq. 28-29).
+  // Sigma <- F Sigma F^T + G Q G^T with Q = diag(qg I, qa I), by 3x3 blocks: F is sparse and dense 9x9 products
+  // cost several times more. Discrete white noise of the sample interval: Cov(eta_d) = sigma^2 / h (Forster eq. 29).
   const double qg = config_.noise.gyroscope_noise_density * config_.noise.gyroscope_noise_density / h;
   const double qa = config_.noise.accelerometer_noise_density * config_.noise.accelerometer_noise_density / h;
-  cov_ = F * cov_ * F.transpose() + qg * G.leftCols<3>() * G.leftCols<3>().transpose() +
-         qa * G.rightCols<3>() * G.rightCols<3>().transpose();
+  Eigen::Matrix3d M[3][3];  // M = F Sigma
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::Matrix3d P0 = cov_.block<3, 3>(0, 3 * c), P1 = cov_.block<3, 3>(3, 3 * c),
+                          P2 = cov_.block<3, 3>(6, 3 * c);
+    M[0][c] = F_RR * P0;
+    M[1][c] = F_vR * P0 + P1;
+    M[2][c] = F_pR * P0 + h * P1 + P2;
+  }
+  for (int r = 0; r < 3; ++r) {
+    // Row r of M F^T: columns F^T = [F_RR^T F_vR^T F_pR^T; 0 I hI; 0 0 I].
+    const Eigen::Matrix3d out[3] = {M[r][0] * F_RR.transpose(), M[r][0] * F_vR.transpose() + M[r][1],
+                                    M[r][0] * F_pR.transpose() + h * M[r][1] + M[r][2]};
+    for (int c = r; c < 3; ++c) {
+      Eigen::Matrix3d block = out[c] + qg * G_g[r] * G_g[c].transpose();
+      if (r > 0) block += qa * G_a[r] * G_a[c].transpose();
+      cov_.block<3, 3>(3 * r, 3 * c) = block;
+      if (c != r) cov_.block<3, 3>(3 * c, 3 * r) = block.transpose();
+    }
+  }
 
   // Bias Jacobians: J <- F J + G, written out block by block (dphi, dv, dp rows; b_g, b_a columns).
   jac_.dp_dbg += jac_.dv_dbg * h + 0.5 * h * h * (A_phi * jac_.dR_dbg + A_bg);
