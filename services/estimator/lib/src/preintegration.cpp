@@ -99,7 +99,7 @@ void Preintegration::propagate() {
 // for the step we write the mean acceleration in frame B_i as acc and its first-order perturbation as
 //   d(acc) = A_phi dphi + A_bg db_g + A_ba db_a (+ the same matrices times the measurement noise),
 // which gives the error-state transition F, the noise/bias input matrix G, and
-//   Sigma <- F Sigma F^T + G Q G^T   (Forster App. A, eq. 62-63)
+//   Sigma <- F Sigma F^T + G Q G^T   (Forster App. A)
 //   J_b   <- F J_b + G               (Forster App. B; the same recursion, exact for the discrete scheme, so the
 //                                      first-order bias update agrees with repropagation up to O(db^2)).
 // For kEuler (acc = dR a_k) these reduce to Forster's matrices: A_phi = -dR [a]x, A_bg = 0, A_ba = -dR.
@@ -138,7 +138,7 @@ void Preintegration::step(const ImuSample& a, const ImuSample& b) {
   const Eigen::Matrix3d G_a[3] = {Eigen::Matrix3d::Zero(), A_ba * h, 0.5 * A_ba * h * h};
 
   // Sigma <- F Sigma F^T + G Q G^T with Q = diag(qg I, qa I), by 3x3 blocks: F is sparse and dense 9x9 products
-  // cost several times more. Discrete white noise of the sample interval: Cov(eta_d) = sigma^2 / h (Forster eq. 29).
+  // cost several times more. Discrete white noise of the sample interval: Cov(eta_d) = sigma^2 / h (Forster Sec. IV).
   const double qg = config_.noise.gyroscope_noise_density * config_.noise.gyroscope_noise_density / h;
   const double qa = config_.noise.accelerometer_noise_density * config_.noise.accelerometer_noise_density / h;
   Eigen::Matrix3d M[3][3];  // M = F Sigma
@@ -168,7 +168,7 @@ void Preintegration::step(const ImuSample& a, const ImuSample& b) {
   jac_.dv_dba += h * A_ba;
   jac_.dR_dbg = dRk.transpose() * jac_.dR_dbg - Jr * h;
 
-  // Mean (Forster eq. 35-37 in iterative form).
+  // Mean (Forster Sec. V-A, in iterative form).
   delta_.p += delta_.v * h + 0.5 * acc * h * h;
   delta_.v += acc * h;
   delta_.R = R1;

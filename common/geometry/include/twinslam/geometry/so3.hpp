@@ -1,8 +1,8 @@
 #pragma once
 // SO(3) exponential/logarithm maps and their Jacobians, following the conventions of
 // Forster, Carlone, Dellaert, Scaramuzza, "On-Manifold Preintegration for Real-Time Visual-Inertial Odometry",
-// IEEE TRO 33(1), 2017, Sec. II-B ("SO(3)"): Exp(phi) = exp(phi^), phi in R^3 is the rotation vector [rad];
-// right Jacobian Jr (their eq. 8) and its inverse (eq. 9) satisfy
+// IEEE TRO 33(1), 2017, Sec. II ("Preliminaries", SO(3)): Exp(phi) = exp(phi^), phi in R^3 is the rotation vector
+// [rad]; the right Jacobian Jr and its inverse satisfy
 //   Exp(phi + dphi) ~= Exp(phi) Exp(Jr(phi) dphi)   and   Log(Exp(phi) Exp(dphi)) ~= phi + Jr^-1(phi) dphi.
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products and determinants for every user of these maps
@@ -33,7 +33,7 @@ Eigen::Matrix3d so3_exp(const Eigen::Vector3d& phi);
 // where the trace-based formula (acos of (tr R - 1) / 2) is ill-conditioned.
 Eigen::Vector3d so3_log(const Eigen::Matrix3d& R);
 
-// Right Jacobian Jr(phi) (Forster eq. 8) and its inverse (eq. 9); Taylor series below kSmallAngle.
+// Right Jacobian Jr(phi) and its inverse (closed forms of Forster Sec. II); Taylor series below kSmallAngle.
 Eigen::Matrix3d so3_right_jacobian(const Eigen::Vector3d& phi);
 Eigen::Matrix3d so3_right_jacobian_inverse(const Eigen::Vector3d& phi);
 

@@ -1,6 +1,6 @@
 #pragma once
-// The IMU preintegration residual between two keyframe states (Forster et al., TRO 2017, eq. 45 plus the bias random
-// walk of eq. 47) and its Jacobians in closed form (Forster App. C), plus the state prediction it implies.
+// The IMU preintegration residual between two keyframe states (Forster et al., TRO 2017, eq. 45, plus the bias random
+// walk) and its Jacobians in closed form (Forster App. C), plus the state prediction it implies.
 #include <Eigen/Core>
 
 #include "twinslam/estimator/imu_state.hpp"
@@ -30,7 +30,7 @@ Vector15d imu_residual(const Preintegration& preintegration, const ImuState& sta
                        const Eigen::Vector3d& g_L, ImuResidualJacobians* jacobians = nullptr);
 
 // State j that makes the residual zero given state i (the definition of the preintegrated measurements, Forster
-// eq. 33, solved for state j, with the measurements corrected to the biases of state i):
+// Sec. V-A, solved for state j, with the measurements corrected to the biases of state i):
 //   R_j = R_i dR,  v_j = v_i + g dt + R_i dv,  p_j = p_i + v_i dt + 1/2 g dt^2 + R_i dp,  biases of state i.
 ImuState predict(const ImuState& state_i, const Preintegration& preintegration, const Eigen::Vector3d& g_L);
 

@@ -7,7 +7,7 @@
 
 namespace twinslam::estimator {
 
-// One IMU reading. Measurement model (Forster et al., TRO 2017, eq. 27):
+// One IMU reading. Measurement model (Forster et al., TRO 2017, Sec. IV):
 //   gyro_B  = omega_WB_B + b_g + eta_g,   accel_B = R_WB^T (a_W - g_W) + b_a + eta_a.
 struct ImuSample {
   std::int64_t stamp_ns = 0;
@@ -23,7 +23,8 @@ struct ImuBias {
 
 // Continuous-time noise densities of the IMU, SI units, named like the keys of EuRoC's imu0/sensor.yaml.
 // Preintegration discretizes them with each sample interval dt: Cov(eta_d) = density^2 / dt for the white noise and
-// Cov(b_j - b_i) = walk^2 * (t_j - t_i) for the bias random walk (Forster et al., Sec. IV, eq. 28-29 and 47).
+// Cov(b_j - b_i) = walk^2 * (t_j - t_i) for the bias random walk (Forster et al., Sec. IV and the bias
+// random-walk term of the IMU factor).
 // Defaults: the ADIS16448 of EuRoC (imu0/sensor.yaml).
 struct ImuNoise {
   double gyroscope_noise_density = 1.6968e-04;     // [rad / s / sqrt(Hz)]

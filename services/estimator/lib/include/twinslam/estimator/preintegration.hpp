@@ -2,7 +2,7 @@
 // On-manifold IMU preintegration between two keyframes (Forster, Carlone, Dellaert, Scaramuzza, "On-Manifold
 // Preintegration for Real-Time Visual-Inertial Odometry", IEEE TRO 33(1), 2017; "Forster" below).
 //
-// Given IMU samples and keyframe stamps t_i < t_j, computes the preintegrated measurements (Forster eq. 33/35)
+// Given IMU samples and keyframe stamps t_i < t_j, computes the preintegrated measurements (Forster Sec. V-A)
 //   dR_ij = prod_k Exp((w_k - b_g) dt),  dv_ij = sum_k dR_ik (a_k - b_a) dt,  dp_ij = sum_k dv_ik dt + 1/2 dR_ik a dt^2
 // at a linearization bias b_bar, their 9x9 covariance (Forster Sec. V-B, App. A, in the order [dphi, dv, dp]) and their
 // Jacobians w.r.t. the bias (Forster Sec. V-C, App. B) for the first-order bias update of Forster eq. 44.
@@ -76,7 +76,7 @@ class Preintegration {
   // Covariance of [dphi, dv, dp] (rad, m/s, m).
   const Matrix9d& covariance() const { return cov_; }
   // Covariance of the 15-dim IMU factor residual [dphi, dv, dp, b_g random walk, b_a random walk]: the preintegration
-  // block plus the bias random walk over t_j - t_i (Forster eq. 47-48), block diagonal.
+  // block plus the bias random walk over t_j - t_i (Forster Sec. V-D), block diagonal.
   Matrix15d residual_covariance() const;
   // Lower-triangular S with S^T S = residual_covariance()^-1: the IMU factor whitens its residual as S r.
   const Matrix15d& sqrt_information() const { return sqrt_info_; }
