@@ -210,3 +210,20 @@ TEST(Preintegration, RejectsBadInputWithAReason) {
   c.noise.accelerometer_noise_density = 0.0;
   EXPECT_NE(input_error_of(good, 0, 40'000'000, c).find("accelerometer_noise_density"), std::string::npos);
 }
+
+TEST(Preintegration, CoveringSamplesSelectsTheBracketingSlice) {
+  std::vector<est::ImuSample> buffer;
+  for (std::int64_t t = 0; t <= 100; t += 10) buffer.push_back({t, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
+  auto slice = est::covering_samples(buffer, 25, 60);  // 20 (before 25) .. 60 (exactly t_j)
+  ASSERT_EQ(slice.size(), 5u);
+  EXPECT_EQ(slice.front().stamp_ns, 20);
+  EXPECT_EQ(slice.back().stamp_ns, 60);
+  slice = est::covering_samples(buffer, 30, 61);  // 30 (exactly t_i) .. 70 (after 61)
+  EXPECT_EQ(slice.front().stamp_ns, 30);
+  EXPECT_EQ(slice.back().stamp_ns, 70);
+  // Beyond the buffer the slice is clipped and the constructor reports the gap.
+  slice = est::covering_samples(buffer, 90, 130);
+  EXPECT_EQ(slice.front().stamp_ns, 90);
+  EXPECT_EQ(slice.back().stamp_ns, 100);
+  EXPECT_THROW(est::Preintegration(est::PreintegrationConfig{}, {}, slice, 90, 130), twinslam::InputError);
+}

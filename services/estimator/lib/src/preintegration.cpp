@@ -1,5 +1,6 @@
 #include "twinslam/estimator/preintegration.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -37,6 +38,16 @@ ImuSample interpolate(const ImuSample& a, const ImuSample& b, std::int64_t t) {
 std::string stamp(std::int64_t t) { return std::to_string(t) + " ns"; }
 
 }  // namespace
+
+std::span<const ImuSample> covering_samples(std::span<const ImuSample> sorted, std::int64_t t_i_ns,
+                                            std::int64_t t_j_ns) {
+  const auto by_stamp = [](const ImuSample& s, std::int64_t t) { return s.stamp_ns < t; };
+  auto first = std::lower_bound(sorted.begin(), sorted.end(), t_i_ns, by_stamp);  // first stamp >= t_i
+  if (first != sorted.begin() && (first == sorted.end() || first->stamp_ns > t_i_ns)) --first;
+  auto last = std::lower_bound(first, sorted.end(), t_j_ns, by_stamp);  // first stamp >= t_j
+  if (last != sorted.end()) ++last;
+  return sorted.subspan(static_cast<std::size_t>(first - sorted.begin()), static_cast<std::size_t>(last - first));
+}
 
 Preintegration::Preintegration(const PreintegrationConfig& config, const ImuBias& linearization_bias,
                                std::span<const ImuSample> samples, std::int64_t t_i_ns, std::int64_t t_j_ns)

@@ -51,14 +51,21 @@ struct PreintegrationBiasJacobians {
   Eigen::Matrix3d dp_dba = Eigen::Matrix3d::Zero();
 };
 
+// The part of a time-sorted IMU buffer that Preintegration needs for [t_i_ns, t_j_ns]: from the last sample at or
+// before t_i_ns to the first sample at or after t_j_ns (clipped to the buffer, so coverage is still checked by the
+// constructor). Binary search, so a service can keep one long buffer and pass the slice.
+std::span<const ImuSample> covering_samples(std::span<const ImuSample> sorted, std::int64_t t_i_ns,
+                                            std::int64_t t_j_ns);
+
 class Preintegration {
  public:
   using Matrix9d = Eigen::Matrix<double, 9, 9>;
   using Matrix15d = Eigen::Matrix<double, 15, 15>;
 
   // Integrates over [t_i_ns, t_j_ns]. `samples` must have strictly increasing stamps, finite values, and cover the
-  // interval (first stamp <= t_i_ns, last stamp >= t_j_ns); samples outside it are ignored. Throws
-  // twinslam::InputError otherwise (and for t_j_ns <= t_i_ns or an invalid config).
+  // interval (first stamp <= t_i_ns, last stamp >= t_j_ns); samples outside it are ignored but still validated, so pass
+  // covering_samples() of a long buffer. Throws twinslam::InputError otherwise (and for t_j_ns <= t_i_ns or an invalid
+  // config).
   Preintegration(const PreintegrationConfig& config, const ImuBias& linearization_bias,
                  std::span<const ImuSample> samples, std::int64_t t_i_ns, std::int64_t t_j_ns);
 
