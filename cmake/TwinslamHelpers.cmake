@@ -14,11 +14,11 @@ function(twinslam_library name)
   twinslam_warnings(${name})
 endfunction()
 
-# twinslam_test(NAME SOURCES... LINKS ... [LABELS ...] [TIMEOUT s])
+# twinslam_test(NAME SOURCES... LINKS ... [LABELS ...] [TIMEOUT s] [SERIAL])
 # A GoogleTest executable registered as one ctest test per TEST() (gtest_discover_tests).
 # TWINSLAM_SHARED_DIR and the bin folder are passed as compile definitions so tests find data and binaries.
 function(twinslam_test name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;LINKS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "SERIAL" "TIMEOUT" "SOURCES;LINKS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LINKS} GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
@@ -32,8 +32,12 @@ function(twinslam_test name)
   if(NOT ARG_LABELS)
     set(ARG_LABELS unit)
   endif()
+  set(serial FALSE)
+  if(ARG_SERIAL)
+    set(serial TRUE)  # e.g. tests that inspect machine-wide state such as /dev/shm
+  endif()
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
-    PROPERTIES TIMEOUT ${ARG_TIMEOUT} LABELS "${ARG_LABELS}")
+    PROPERTIES TIMEOUT ${ARG_TIMEOUT} LABELS "${ARG_LABELS}" RUN_SERIAL ${serial})
 endfunction()
 
 # Adds every immediate subfolder that has a CMakeLists.txt, so new modules need no edit of the parent.

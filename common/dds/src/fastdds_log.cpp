@@ -1,0 +1,34 @@
+#include "twinslam/dds/fastdds_log.hpp"
+
+#include <memory>
+#include <mutex>
+
+#include <fastdds/dds/log/Log.hpp>
+#include <spdlog/spdlog.h>
+
+namespace twinslam::dds {
+namespace {
+namespace fdds = eprosima::fastdds::dds;
+
+class SpdlogConsumer : public fdds::LogConsumer {
+ public:
+  void Consume(const fdds::Log::Entry& entry) override {
+    const auto level = entry.kind == fdds::Log::Kind::Error ? spdlog::level::err
+                       : entry.kind == fdds::Log::Kind::Warning ? spdlog::level::warn
+                                                                : spdlog::level::info;
+    spdlog::log(level, "fastdds [{}] {}", entry.context.category == nullptr ? "" : entry.context.category,
+                entry.message);
+  }
+};
+}  // namespace
+
+void route_fastdds_log() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    fdds::Log::ClearConsumers();
+    fdds::Log::RegisterConsumer(std::make_unique<SpdlogConsumer>());
+    fdds::Log::SetVerbosity(fdds::Log::Kind::Warning);
+  });
+}
+
+}  // namespace twinslam::dds

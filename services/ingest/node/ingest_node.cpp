@@ -1,0 +1,243 @@
+#include "ingest_node.hpp"
+
+#include <map>
+#include <set>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/core/shutdown.hpp"
+#include "twinslam/ingest/replay.hpp"
+
+namespace twinslam::ingest {
+using Clock = std::chrono::steady_clock;
+
+class IngestNode::Impl {
+ public:
+  Impl(dds::Node& node, const Dataset& ds, IngestOptions opt)
+      : node_(node), ds_(ds), opt_(std::move(opt)), heartbeat_(node, counters_) {
+    imu_ = node.writer<msg::Imu>(dds::topics::kImu);
+    image_ = node.writer<msg::Image>(dds::topics::kImage);
+    gnss_ = node.writer<msg::GnssFix>(dds::topics::kGnss);
+    node.subscribe<msg::FrameAck>(dds::topics::kFrameAck, [this](const msg::FrameAck& ack) {
+      if (ack.vehicle_id() != node_.config().vehicle_id) return;
+      std::lock_guard lock(mutex_);
+      auto& last = acked_[ack.service()];
+      last = std::max(last, ack.stamp_ns());
+    });
+    heartbeat_.set_state(msg::SVC_READY);
+  }
+
+  bool run() {
+    if (!wait_for_readers()) return false;
+    heartbeat_.set_state(msg::SVC_RUNNING);
+    const auto events = replay_order(ds_);
+    const std::int64_t t0 = events.front().stamp_ns;
+    const auto wall0 = Clock::now();
+    std::int64_t pending_frame = -1;  // stamp of the last frame sent and not yet acknowledged
+    for (const auto& ev : events) {
+      if (shutdown_requested()) return false;
+      if (opt_.realtime) {
+        const auto due = wall0 + std::chrono::nanoseconds(static_cast<std::int64_t>((ev.stamp_ns - t0) / opt_.speed));
+        while (Clock::now() < due && !shutdown_requested()) {
+          std::this_thread::sleep_for(std::min<Clock::duration>(due - Clock::now(), std::chrono::milliseconds(20)));
+        }
+      } else if (ev.stream == Stream::Image && pending_frame >= 0) {
+        wait_for_acks(pending_frame);
+      }
+      publish(ev);
+      if (ev.stream == Stream::Image) pending_frame = ev.stamp_ns;
+    }
+    if (!opt_.realtime) {
+      if (pending_frame >= 0) wait_for_acks(pending_frame);
+    }
+    heartbeat_.set_state(msg::SVC_DONE);
+    spdlog::info("published {} IMU, {} images, {} GNSS", counters_.get("imu_out"), counters_.get("images_out"),
+                 counters_.get("gnss_out"));
+    return true;
+  }
+
+ private:
+  bool wait_for_readers() {
+    const auto deadline = Clock::now() + opt_.start_timeout;
+    auto ready = [this] {
+      if (imu_.matched_readers() < opt_.wait_readers.imu || image_.matched_readers() < opt_.wait_readers.image ||
+          (!ds_.gnss.empty() && gnss_.matched_readers() < opt_.wait_readers.gnss)) {
+        return false;
+      }
+      std::lock_guard lock(mutex_);
+      for (const auto& s : opt_.ack_from) {
+        if (!ready_services_.count(s)) return false;
+      }
+      return true;
+    };
+    if (!opt_.ack_from.empty()) {
+      // A service is ready once it announced READY: its readers and its ack writer exist by then.
+      node_.subscribe<msg::Heartbeat>(dds::topics::kHeartbeat, [this](const msg::Heartbeat& hb) {
+        if (hb.state() == msg::SVC_READY || hb.state() == msg::SVC_RUNNING) {
+          std::lock_guard lock(mutex_);
+          ready_services_.insert(hb.service());
+        }
+      });
+    }
+    while (!ready()) {
+      if (shutdown_requested()) return false;
+      if (Clock::now() > deadline) {
+        throw std::runtime_error("no consumer ready within " + std::to_string(opt_.start_timeout.count()) +
+                                 " ms (matched readers: imu " + std::to_string(imu_.matched_readers()) + ", image " +
+                                 std::to_string(image_.matched_readers()) + ")");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return true;
+  }
+
+  // Lockstep: every reliable reader holds everything sent so far (at most one frame in flight, so a burst never
+  // overflows the shared-memory segment), and every service in ack_from has finished frame `stamp`.
+  void wait_for_acks(std::int64_t stamp) {
+    if (!imu_.wait_acknowledged(opt_.ack_timeout) || !image_.wait_acknowledged(opt_.ack_timeout) ||
+        !gnss_.wait_acknowledged(opt_.ack_timeout)) {
+      throw std::runtime_error("readers did not acknowledge the samples before frame " + std::to_string(stamp));
+    }
+    const auto deadline = Clock::now() + opt_.ack_timeout;
+    while (true) {
+      {
+        std::lock_guard lock(mutex_);
+        bool all = true;
+        for (const auto& s : opt_.ack_from) {
+          const auto it = acked_.find(s);
+          all = all && it != acked_.end() && it->second >= stamp;
+        }
+        if (all) return;
+      }
+      if (shutdown_requested()) return;
+      if (Clock::now() > deadline) {
+        throw std::runtime_error("frame " + std::to_string(stamp) + " not acknowledged within " +
+                                 std::to_string(opt_.ack_timeout.count()) + " ms");
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+  }
+
+  void publish(const ReplayEvent& ev) {
+    const std::string& vehicle = node_.config().vehicle_id;
+    bool ok = true;
+    switch (ev.stream) {
+      case Stream::Imu: {
+        const auto& r = ds_.imu[ev.index];
+        msg::Imu m;
+        m.vehicle_id(vehicle);
+        m.stamp_ns(r.stamp_ns);
+        m.seq(imu_seq_++);
+        m.gyro_radps().x(r.gyro_radps.x());
+        m.gyro_radps().y(r.gyro_radps.y());
+        m.gyro_radps().z(r.gyro_radps.z());
+        m.accel_mps2().x(r.accel_mps2.x());
+        m.accel_mps2().y(r.accel_mps2.y());
+        m.accel_mps2().z(r.accel_mps2.z());
+        ok = imu_.publish(m);
+        counters_.add("imu_out");
+        break;
+      }
+      case Stream::Image: {
+        const auto& r = ds_.images[ev.index];
+        const cv::Mat img = load_mono8(r.file);
+        msg::Image m;
+        m.vehicle_id(vehicle);
+        m.camera_id(opt_.camera_id);
+        m.stamp_ns(r.stamp_ns);
+        m.seq(image_seq_++);
+        m.width(static_cast<uint32_t>(img.cols));
+        m.height(static_cast<uint32_t>(img.rows));
+        m.step(static_cast<uint32_t>(img.cols));
+        m.encoding("mono8");
+        m.data().resize(static_cast<std::size_t>(img.cols) * img.rows);
+        for (int y = 0; y < img.rows; ++y) {
+          std::copy_n(img.ptr<uint8_t>(y), img.cols, m.data().data() + static_cast<std::size_t>(y) * img.cols);
+        }
+        ok = image_.publish(m);
+        counters_.add("images_out");
+        break;
+      }
+      case Stream::Gnss: {
+        const auto& r = ds_.gnss[ev.index];
+        msg::GnssFix m;
+        m.vehicle_id(vehicle);
+        m.stamp_ns(r.stamp_ns);
+        m.seq(gnss_seq_++);
+        m.latitude_deg(r.latitude_deg);
+        m.longitude_deg(r.longitude_deg);
+        m.altitude_m(r.altitude_m);
+        m.covariance_enu_m2().fill(0.0);
+        m.covariance_enu_m2()[0] = r.std_east_m * r.std_east_m;
+        m.covariance_enu_m2()[4] = r.std_north_m * r.std_north_m;
+        m.covariance_enu_m2()[8] = r.std_up_m * r.std_up_m;
+        m.num_satellites(static_cast<uint16_t>(r.num_satellites));
+        ok = gnss_.publish(m);
+        counters_.add("gnss_out");
+        break;
+      }
+    }
+    if (!ok) {
+      // Live: a full history is the consumer's loss, reported; lockstep: a writer blocked for 30 s is a stall.
+      counters_.add("publish_failed");
+      if (!opt_.realtime) throw std::runtime_error("publishing blocked: a reader stopped taking samples");
+    }
+  }
+
+  dds::Node& node_;
+  const Dataset& ds_;
+  IngestOptions opt_;
+  dds::Counters counters_;
+  dds::HeartbeatPublisher heartbeat_;
+  dds::Writer<msg::Imu> imu_;
+  dds::Writer<msg::Image> image_;
+  dds::Writer<msg::GnssFix> gnss_;
+  std::mutex mutex_;
+  std::map<std::string, std::int64_t> acked_;
+  std::set<std::string> ready_services_;
+  unsigned long long imu_seq_ = 0, image_seq_ = 0, gnss_seq_ = 0;
+};
+
+WaitReaders parse_wait_readers(const std::string& text, int fallback) {
+  WaitReaders w{fallback, fallback, 0};
+  if (text.empty()) return w;
+  auto number = [&](const std::string& s) {
+    try {
+      std::size_t used = 0;
+      const int n = std::stoi(s, &used);
+      if (used == s.size() && n >= 0) return n;
+    } catch (const std::exception&) {
+    }
+    throw UsageError("--wait-readers: '" + text + "' is not N or imu=N,image=N,gnss=N");
+  };
+  if (text.find('=') == std::string::npos) {
+    w.imu = w.image = number(text);
+    return w;
+  }
+  w = {};
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const auto end = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    const auto eq = item.find('=');
+    const std::string key = item.substr(0, eq);
+    const int n = number(eq == std::string::npos ? "" : item.substr(eq + 1));
+    if (key == "imu") w.imu = n;
+    else if (key == "image") w.image = n;
+    else if (key == "gnss") w.gnss = n;
+    else throw UsageError("--wait-readers: unknown stream '" + key + "'");
+    start = end + 1;
+  }
+  return w;
+}
+
+IngestNode::IngestNode(dds::Node& node, const Dataset& dataset, IngestOptions options)
+    : impl_(new Impl(node, dataset, std::move(options))) {}
+IngestNode::~IngestNode() { delete impl_; }
+bool IngestNode::run() { return impl_->run(); }
+
+}  // namespace twinslam::ingest

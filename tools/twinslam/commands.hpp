@@ -1,0 +1,14 @@
+#pragma once
+// Subcommands of the `twinslam` executable. Each lives in its own cmd_<name>.cpp and registers itself on the app;
+// its callback stores the process exit code (CONTRACTS.md: 0 ok, 2 bad usage/input, 1 internal failure) in `exit_code`.
+#include <CLI/CLI.hpp>
+
+namespace twinslam::cli {
+
+void add_launch_command(CLI::App& app, int& exit_code);  // cmd_launch.cpp
+void add_topics_command(CLI::App& app, int& exit_code);  // cmd_topics.cpp
+void add_echo_command(CLI::App& app, int& exit_code);    // cmd_echo.cpp
+void add_run_command(CLI::App& app, int& exit_code);     // cmd_run.cpp
+void add_eval_command(CLI::App& app, int& exit_code);    // cmd_eval.cpp
+
+}  // namespace twinslam::cli

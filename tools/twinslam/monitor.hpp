@@ -1,0 +1,44 @@
+#pragma once
+// Watches every topic of the table: message counts, matched writers, and the latest heartbeat of each service.
+// Used by `twinslam topics` (best effort, never slows the pipeline) and by `twinslam run` (reliable, exact counts).
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "twinslam/dds/node.hpp"
+
+namespace twinslam::cli {
+
+struct TopicStats {
+  std::string name, type;
+  unsigned long long messages = 0;
+  int writers = 0;  // matched writers now
+};
+
+struct ServiceInfo {
+  std::string service, instance, vehicle_id, state;
+  unsigned long long uptime_ms = 0;
+  std::map<std::string, unsigned long long> counters;
+};
+
+class TopicMonitor {
+ public:
+  TopicMonitor(dds::Node& node, bool reliable);
+  std::vector<TopicStats> stats() const;
+  std::vector<ServiceInfo> services() const;  // latest heartbeat per instance, sorted by service
+  // True once every named service has announced ready/running/done.
+  bool all_ready(const std::vector<std::string>& services) const;
+
+ private:
+  struct Entry {
+    const dds::TopicSpec* spec;
+    const dds::ReaderStatus* status;
+  };
+  std::vector<Entry> entries_;
+  mutable std::mutex mutex_;
+  std::map<std::string, ServiceInfo> services_;
+};
+
+}  // namespace twinslam::cli
