@@ -50,3 +50,17 @@ function(twinslam_add_subdirectories)
     endif()
   endforeach()
 endfunction()
+
+# twinslam_service(NAME NODE_SOURCES ... [LINKS ...]): a service's DDS node library twinslam_<NAME>_node (the
+# node sources, linkable into tests so two services can share a process) and its executable twinslam-<NAME> (main.cpp).
+function(twinslam_service name)
+  cmake_parse_arguments(ARG "" "" "NODE_SOURCES;LINKS" ${ARGN})
+  add_library(twinslam_${name}_node STATIC ${ARG_NODE_SOURCES})
+  target_include_directories(twinslam_${name}_node PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(twinslam_${name}_node PUBLIC twinslam_dds ${ARG_LINKS})
+  twinslam_warnings(twinslam_${name}_node)
+  add_executable(twinslam_${name} main.cpp)
+  set_target_properties(twinslam_${name} PROPERTIES OUTPUT_NAME twinslam-${name})
+  target_link_libraries(twinslam_${name} PRIVATE twinslam_${name}_node)
+  twinslam_warnings(twinslam_${name})
+endfunction()

@@ -50,3 +50,19 @@ int serve_until_shutdown(HeartbeatPublisher& heartbeat) {
   return kExitOk;
 }
 }  // namespace twinslam::dds
+
+namespace twinslam::dds {
+int run_wired_service(const std::string& service, const std::string& description, int argc, char** argv,
+                      const std::function<void(Node&, Counters&)>& wire) {
+  CLI::App app{description};
+  ServiceOptions options;
+  add_service_options(app, options);
+  return service_main(service, app, options, argc, argv, [&] {
+    Node node(options.node);
+    Counters counters;
+    HeartbeatPublisher heartbeat(node, counters);
+    wire(node, counters);
+    return serve_until_shutdown(heartbeat);
+  });
+}
+}  // namespace twinslam::dds

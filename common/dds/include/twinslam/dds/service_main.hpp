@@ -32,3 +32,11 @@ class HeartbeatPublisher;
 // Marks the service READY and blocks until SIGINT/SIGTERM; the usual tail of a service's main.
 int serve_until_shutdown(HeartbeatPublisher& heartbeat);
 }  // namespace twinslam::dds
+
+namespace twinslam::dds {
+class Counters;
+// The whole main of a service that only wires topics: common options, a Node, a heartbeat with `counters`, then
+// `wire(node, counters)` and serve until SIGINT/SIGTERM.
+int run_wired_service(const std::string& service, const std::string& description, int argc, char** argv,
+                      const std::function<void(Node&, Counters&)>& wire);
+}  // namespace twinslam::dds
