@@ -27,7 +27,10 @@ void route_fastdds_log() {
   std::call_once(once, [] {
     fdds::Log::ClearConsumers();
     fdds::Log::RegisterConsumer(std::make_unique<SpdlogConsumer>());
-    fdds::Log::SetVerbosity(fdds::Log::Kind::Warning);
+    // Fast DDS warnings are mostly benign protocol chatter (e.g. DATA_FRAG from a writer not yet discovered, which
+    // reliability repairs): shown only at --log-level debug or lower.
+    fdds::Log::SetVerbosity(spdlog::get_level() <= spdlog::level::debug ? fdds::Log::Kind::Warning
+                                                                        : fdds::Log::Kind::Error);
   });
 }
 
