@@ -1,0 +1,87 @@
+#pragma once
+// The simulator's scenario: every key of the scenario file in ../shared/CONTRACTS.md, with defaults and units.
+// Parsing, validation and the built-in scenarios (tiny, city-loops, city-survey) live in scenario.cpp; every other
+// simulator module takes its own part of this struct.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace twinslam::sim {
+
+struct Origin {
+  double lat_deg = 47.3769;   // WGS84 origin of W (East-North-Up)
+  double lon_deg = 8.5417;
+  double alt_m = 408.0;
+};
+
+struct CityConfig {
+  std::string source = "procedural";          // procedural | osm | cityjson | mesh | 3dtiles
+  double size_m = 600;                        // procedural: side of the square city [m]
+  std::array<double, 2> height_m{8, 60};      // procedural: building height range [m]
+  std::optional<std::string> path;            // file for osm / cityjson / mesh / 3dtiles
+  std::optional<std::string> crs;             // "EPSG:nnnn" when the file does not say
+};
+
+struct TrajectoryConfig {
+  std::string type = "loops";                 // loops | survey | waypoints
+  double duration_s = 300;                    // [s]
+  double speed_mps = 2.0;                     // cruise speed [m/s]
+  std::array<double, 2> altitude_m{2, 17};    // min/max flight altitude above ground [m]
+  std::vector<Eigen::Vector3d> waypoints_W;   // waypoints type only [m, W]
+};
+
+struct CameraSimConfig {
+  std::string model = "fisheye-equidistant";  // fisheye-equidistant | pinhole-radtan
+  int width = 640;                            // [px]
+  int height = 400;                           // [px]
+  double rate_hz = 20;                        // [Hz]
+  double fov_deg = 120;                       // horizontal field of view [deg]
+};
+
+struct ImuSimConfig {
+  double rate_hz = 200;                       // [Hz]
+  double gyro_noise = 1.2e-3;                 // white noise density [rad/s/sqrt(Hz)]
+  double accel_noise = 8.0e-3;                // [m/s^2/sqrt(Hz)]
+  double gyro_walk = 3.0e-5;                  // bias random walk density [rad/s^2/sqrt(Hz)]
+  double accel_walk = 1.0e-4;                 // [m/s^3/sqrt(Hz)]
+};
+
+struct GnssSimConfig {
+  double rate_hz = 5;                         // [Hz]
+  std::string model = "raytrace";             // raytrace | learned | gaussian (this issue: all use the simple model)
+  double sigma_m = 1.5;                       // gaussian: horizontal standard deviation [m]
+};
+
+struct TwinConfig {
+  double noise_m = 0.2;                       // perturbation of twin surfaces [m]
+  int missing_buildings = 0;                  // buildings removed from the twin (environment change)
+  int added_buildings = 0;                    // buildings in the twin that do not exist
+  Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();  // georeferencing error of the twin [m, W]
+};
+
+struct Scenario {
+  std::string name = "custom";
+  std::uint64_t seed = 7;
+  Origin origin;
+  CityConfig city;
+  TrajectoryConfig trajectory;
+  CameraSimConfig camera;
+  ImuSimConfig imu;
+  GnssSimConfig gnss;
+  TwinConfig twin;
+};
+
+// What the trajectory generator needs to know about the world (filled from the built city).
+struct SceneHints {
+  Eigen::Vector2d tall_building_center_W = Eigen::Vector2d::Zero();  // [m, E N]
+  double tall_building_radius_m = 15;          // half-diagonal of its footprint [m]
+  double tall_building_height_m = 60;          // [m]
+  double ground_z_m = 0;                       // [m, U]
+  std::array<double, 4> extent_W{-300, -300, 300, 300};  // min e, min n, max e, max n [m]
+};
+
+}  // namespace twinslam::sim
