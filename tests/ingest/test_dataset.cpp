@@ -76,3 +76,32 @@ TEST(Dataset, UndecodableImageIsAnInputError) {
   const auto ds = ingest::load_dataset(dir);
   EXPECT_THROW(ingest::load_mono8(ds.images.front().file), InputError);
 }
+
+TEST(FeatureTracks, GroupsRowsByFrameAndCountsTrackLengths) {
+  const fs::path f = fs::temp_directory_path() / ("twinslam_features_" + std::to_string(::getpid()) + ".csv");
+  std::ofstream(f) << "#t_ns,landmark_id,u,v,u_noisy,v_noisy\n"
+                      "100,1,10,20,10.5,20.5\n100,2,30,40,30,40\n"
+                      "200,1,11,21,11.5,21.5\n"
+                      "300,1,12,22,12,22\n300,2,31,41,31,41\n";
+  const auto frames = ingest::load_feature_tracks(f);
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_EQ(frames[0].stamp_ns, 100);
+  ASSERT_EQ(frames[2].features.size(), 2u);
+  EXPECT_EQ(frames[2].features[0].track_length, 3u);  // landmark 1 in frames 100, 200, 300
+  EXPECT_EQ(frames[2].features[1].track_length, 1u);  // landmark 2 missed frame 200: a new track
+  EXPECT_DOUBLE_EQ(frames[0].features[0].u, 10.5);    // noisy columns by default
+  EXPECT_DOUBLE_EQ(ingest::load_feature_tracks(f, false)[0].features[0].u, 10.0);
+}
+
+TEST(FeatureTracks, RejectsFramesOutOfOrderAndDuplicates) {
+  const fs::path f = fs::temp_directory_path() / ("twinslam_features_bad_" + std::to_string(::getpid()) + ".csv");
+  std::ofstream(f) << "200,1,1,1,1,1\n100,1,1,1,1,1\n";
+  try {
+    ingest::load_feature_tracks(f);
+    FAIL() << "accepted a frame going back";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), f.string() + ":2: timestamp 100 goes back (rows must be grouped by frame)");
+  }
+  std::ofstream(f) << "100,1,1,1,1,1\n100,1,2,2,2,2\n";
+  EXPECT_THROW(ingest::load_feature_tracks(f), InputError);
+}

@@ -16,6 +16,7 @@
 #include "twinslam/core/main_guard.hpp"
 #include "twinslam/core/shutdown.hpp"
 #include "twinslam/ingest/dataset.hpp"
+#include "twinslam/ingest/features.hpp"
 #include "twinslam/process/supervisor.hpp"
 
 namespace twinslam::cli {
@@ -38,10 +39,8 @@ int pick_domain(int requested) {
 }
 
 int run_pipeline(const RunOptions& o) {
-  if (o.features) {
-    throw UsageError("--features: replay of feature tracks (mav0/cam0/features.csv) is not implemented yet");
-  }
   const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
+  if (o.features) ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
   const fs::path out = o.out;
   fs::create_directories(out);
   const int domain = pick_domain(o.domain);
@@ -56,7 +55,9 @@ int run_pipeline(const RunOptions& o) {
   TopicMonitor monitor(recorder, /*reliable=*/true);
 
   const std::string replay = o.realtime ? "--realtime" : "--max";
-  std::vector<std::string> services{"tracking", "estimator"};
+  // With --features the dataset's ideal tracks replace the image frontend.
+  std::vector<std::string> services{"estimator"};
+  if (!o.features) services.insert(services.begin(), "tracking");
   if (uses_twin(o.mode)) {
     services.push_back("tiles");
     services.push_back("registration");
@@ -75,11 +76,15 @@ int run_pipeline(const RunOptions& o) {
     if (std::chrono::steady_clock::now() > ready_deadline) throw std::runtime_error("services not ready in time");
   }
   // Readers ingest must see before its first sample: every subscriber of each stream plus this recorder.
+  // Camera frames (images, or feature frames with --features) go to tracking or to the estimator.
+  const int imu_readers = o.features ? 2 : 3;
   const int gnss_readers = 2 + (uses_twin(o.mode) ? 1 : 0);
   std::vector<std::string> ingest_args{"--dataset", dataset.root.string(), "--vehicle", o.vehicle, replay,
                                        "--wait-readers",
-                                       "imu=3,image=2,gnss=" + std::to_string(dataset.gnss.empty() ? 0 : gnss_readers)};
-  if (!o.realtime) {
+                                       "imu=" + std::to_string(imu_readers) + ",image=2,gnss=" +
+                                           std::to_string(dataset.gnss.empty() ? 0 : gnss_readers)};
+  if (o.features) ingest_args.push_back("--features");
+  if (!o.realtime && !o.features) {
     ingest_args.insert(ingest_args.end(), {"--ack-from", "tracking"});
   }
   supervisor.start({"ingest", "twinslam-ingest", ingest_args, env, {}, true});
@@ -97,7 +102,8 @@ int run_pipeline(const RunOptions& o) {
   unsigned long long frames = 0;
   for (const auto& t : monitor.stats()) {
     if (t.name != dds::topics::kHeartbeat.name) messages[t.name] = t.messages;
-    if (t.name == dds::topics::kFrameAck.name) frames = t.messages;
+    // Frames finished by the pipeline: acknowledged by tracking; with --features, delivered to the estimator.
+    if (t.name == (o.features ? dds::topics::kFeatures.name : dds::topics::kFrameAck.name)) frames = t.messages;
   }
   const std::string status = event == process::Supervisor::Event::Shutdown ? "interrupted" : ok ? "ok" : "failed";
   nlohmann::json run{{"mode", o.mode},

@@ -17,8 +17,13 @@ using Clock = std::chrono::steady_clock;
 
 class IngestNode::Impl {
  public:
-  Impl(dds::Node& node, const Dataset& ds, IngestOptions opt)
-      : node_(node), ds_(ds), opt_(std::move(opt)), heartbeat_(node, counters_) {
+  Impl(dds::Node& node, const Dataset& ds, IngestOptions opt, const FeatureReplay* features)
+      : node_(node), ds_(ds), opt_(std::move(opt)), features_(features), heartbeat_(node, counters_) {
+    if (features_ != nullptr) {
+      camera_ = make_camera(features_->camera.intrinsics);
+      features_w_ = node.writer<msg::FeatureFrame>(dds::topics::kFeatures, dds::writer_profile(dds::QosFamily::Sensor,
+                                                                                               node.config().replay));
+    }
     imu_ = node.writer<msg::Imu>(dds::topics::kImu);
     image_ = node.writer<msg::Image>(dds::topics::kImage);
     gnss_ = node.writer<msg::GnssFix>(dds::topics::kGnss);
@@ -34,7 +39,7 @@ class IngestNode::Impl {
   bool run() {
     if (!wait_for_readers()) return false;
     heartbeat_.set_state(msg::SVC_RUNNING);
-    const auto events = replay_order(ds_);
+    const auto events = replay_order(ds_, features_ == nullptr ? nullptr : &features_->frames);
     const std::int64_t t0 = events.front().stamp_ns;
     const auto wall0 = Clock::now();
     std::int64_t pending_frame = -1;  // stamp of the last frame sent and not yet acknowledged
@@ -45,26 +50,29 @@ class IngestNode::Impl {
         while (Clock::now() < due && !shutdown_requested()) {
           std::this_thread::sleep_for(std::min<Clock::duration>(due - Clock::now(), std::chrono::milliseconds(20)));
         }
-      } else if (ev.stream == Stream::Image && pending_frame >= 0) {
+      } else if (is_frame(ev) && pending_frame >= 0) {
         wait_for_acks(pending_frame);
       }
       publish(ev);
-      if (ev.stream == Stream::Image) pending_frame = ev.stamp_ns;
+      if (is_frame(ev)) pending_frame = ev.stamp_ns;
     }
     if (!opt_.realtime) {
       if (pending_frame >= 0) wait_for_acks(pending_frame);
     }
     heartbeat_.set_state(msg::SVC_DONE);
-    spdlog::info("published {} IMU, {} images, {} GNSS", counters_.get("imu_out"), counters_.get("images_out"),
-                 counters_.get("gnss_out"));
+    spdlog::info("published {} IMU, {} images, {} feature frames, {} GNSS", counters_.get("imu_out"),
+                 counters_.get("images_out"), counters_.get("feature_frames_out"), counters_.get("gnss_out"));
     return true;
   }
 
  private:
+  static bool is_frame(const ReplayEvent& ev) { return ev.stream == Stream::Image || ev.stream == Stream::Features; }
+
   bool wait_for_readers() {
     const auto deadline = Clock::now() + opt_.start_timeout;
     auto ready = [this] {
-      if (imu_.matched_readers() < opt_.wait_readers.imu || image_.matched_readers() < opt_.wait_readers.image ||
+      const int frame_readers = features_ != nullptr ? features_w_.matched_readers() : image_.matched_readers();
+      if (imu_.matched_readers() < opt_.wait_readers.imu || frame_readers < opt_.wait_readers.image ||
           (!ds_.gnss.empty() && gnss_.matched_readers() < opt_.wait_readers.gnss)) {
         return false;
       }
@@ -99,7 +107,8 @@ class IngestNode::Impl {
   // overflows the shared-memory segment), and every service in ack_from has finished frame `stamp`.
   void wait_for_acks(std::int64_t stamp) {
     if (!imu_.wait_acknowledged(opt_.ack_timeout) || !image_.wait_acknowledged(opt_.ack_timeout) ||
-        !gnss_.wait_acknowledged(opt_.ack_timeout)) {
+        !gnss_.wait_acknowledged(opt_.ack_timeout) ||
+        (features_ != nullptr && !features_w_.wait_acknowledged(opt_.ack_timeout))) {
       throw std::runtime_error("readers did not acknowledge the samples before frame " + std::to_string(stamp));
     }
     const auto deadline = Clock::now() + opt_.ack_timeout;
@@ -162,6 +171,11 @@ class IngestNode::Impl {
         counters_.add("images_out");
         break;
       }
+      case Stream::Features: {
+        ok = features_w_.publish(feature_message(features_->frames[ev.index]));
+        counters_.add("feature_frames_out");
+        break;
+      }
       case Stream::Gnss: {
         const auto& r = ds_.gnss[ev.index];
         msg::GnssFix m;
@@ -188,9 +202,39 @@ class IngestNode::Impl {
     }
   }
 
+  msg::FeatureFrame feature_message(const FeatureFrameRecord& r) {
+    msg::FeatureFrame m;
+    m.vehicle_id(node_.config().vehicle_id);
+    m.camera_id(opt_.camera_id);
+    m.stamp_ns(r.stamp_ns);
+    m.seq(feature_seq_++);
+    m.tracking_ms(0.0);
+    m.features().reserve(r.features.size());
+    for (const auto& o : r.features) {
+      Eigen::Vector3d f_C;
+      if (!camera_->unproject(Eigen::Vector2d(o.u, o.v), &f_C)) {
+        counters_.add("features_unprojectable");
+        continue;
+      }
+      msg::Feature f;
+      f.id(o.landmark_id);
+      f.u(static_cast<float>(o.u));
+      f.v(static_cast<float>(o.v));
+      f.bearing_C().x(f_C.x());
+      f.bearing_C().y(f_C.y());
+      f.bearing_C().z(f_C.z());
+      f.track_length(o.track_length);
+      m.features().push_back(f);
+    }
+    return m;
+  }
+
   dds::Node& node_;
   const Dataset& ds_;
   IngestOptions opt_;
+  const FeatureReplay* features_;
+  std::unique_ptr<CameraModel> camera_;
+  dds::Writer<msg::FeatureFrame> features_w_;
   dds::Counters counters_;
   dds::HeartbeatPublisher heartbeat_;
   dds::Writer<msg::Imu> imu_;
@@ -199,7 +243,7 @@ class IngestNode::Impl {
   std::mutex mutex_;
   std::map<std::string, std::int64_t> acked_;
   std::set<std::string> ready_services_;
-  unsigned long long imu_seq_ = 0, image_seq_ = 0, gnss_seq_ = 0;
+  unsigned long long imu_seq_ = 0, image_seq_ = 0, gnss_seq_ = 0, feature_seq_ = 0;
 };
 
 WaitReaders parse_wait_readers(const std::string& text, int fallback) {
@@ -235,8 +279,8 @@ WaitReaders parse_wait_readers(const std::string& text, int fallback) {
   return w;
 }
 
-IngestNode::IngestNode(dds::Node& node, const Dataset& dataset, IngestOptions options)
-    : impl_(new Impl(node, dataset, std::move(options))) {}
+IngestNode::IngestNode(dds::Node& node, const Dataset& dataset, IngestOptions options, const FeatureReplay* features)
+    : impl_(new Impl(node, dataset, std::move(options), features)) {}
 IngestNode::~IngestNode() { delete impl_; }
 bool IngestNode::run() { return impl_->run(); }
 

@@ -10,7 +10,9 @@
 
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
+#include "twinslam/camera/camera_config.hpp"
 #include "twinslam/ingest/dataset.hpp"
+#include "twinslam/ingest/features.hpp"
 
 namespace twinslam::ingest {
 
@@ -30,9 +32,17 @@ struct IngestOptions {
   unsigned short camera_id = 0;
 };
 
+// Ideal feature tracks to publish as FeatureFrame instead of the images (sim --features), with the camera that
+// turns their pixels into bearings.
+struct FeatureReplay {
+  std::vector<FeatureFrameRecord> frames;
+  CameraConfig camera;
+};
+
 class IngestNode {
  public:
-  IngestNode(dds::Node& node, const Dataset& dataset, IngestOptions options);
+  // `features` may be null (images are published).
+  IngestNode(dds::Node& node, const Dataset& dataset, IngestOptions options, const FeatureReplay* features = nullptr);
   ~IngestNode();
   // Publishes the whole dataset (or until shutdown). Returns false if stopped early by a signal.
   // Throws std::runtime_error when a consumer does not acknowledge in time.

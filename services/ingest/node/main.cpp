@@ -1,7 +1,10 @@
 // twinslam-ingest: replays a dataset (EuRoC ASL layout, CONTRACTS.md) onto the DDS sensor topics.
 #include <spdlog/spdlog.h>
 
+#include <memory>
+
 #include "ingest_node.hpp"
+#include "twinslam/camera/sensor_yaml.hpp"
 #include "twinslam/core/shutdown.hpp"
 #include "twinslam/dds/service_main.hpp"
 
@@ -12,7 +15,7 @@ int main(int argc, char** argv) {
   std::string dataset_dir;
   twinslam::ingest::IngestOptions opt;
   double start_timeout_s = 30, ack_timeout_s = 30;
-  bool linger = false;
+  bool linger = false, features = false;
   app.add_option("--dataset", dataset_dir, "Dataset folder (EuRoC ASL layout)")->required();
   app.add_option("--speed", opt.speed, "Realtime pacing factor")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--ack-from", opt.ack_from, "Lockstep: services that must acknowledge each camera frame")
@@ -22,6 +25,7 @@ int main(int argc, char** argv) {
                  "Matched readers needed before sending: N (imu and image) or imu=N,image=N,gnss=N");
   app.add_option("--start-timeout", start_timeout_s, "Seconds to wait for consumers")->capture_default_str();
   app.add_option("--ack-timeout", ack_timeout_s, "Seconds to wait for a frame acknowledgement")->capture_default_str();
+  app.add_flag("--features", features, "Publish mav0/cam0/features.csv as FeatureFrame instead of the images");
   app.add_flag("--linger", linger, "Stay up (state done) after the dataset until stopped");
   return twinslam::dds::service_main("ingest", app, service, argc, argv, [&] {
     const auto dataset = twinslam::ingest::load_dataset(dataset_dir);
@@ -32,7 +36,14 @@ int main(int argc, char** argv) {
     opt.ack_timeout = std::chrono::milliseconds(static_cast<long>(ack_timeout_s * 1000));
     opt.wait_readers = twinslam::ingest::parse_wait_readers(wait_readers, static_cast<int>(opt.ack_from.size()));
     twinslam::dds::Node node(service.node);
-    twinslam::ingest::IngestNode ingest(node, dataset, opt);
+    std::unique_ptr<twinslam::ingest::FeatureReplay> replay;
+    if (features) {
+      replay = std::make_unique<twinslam::ingest::FeatureReplay>();
+      replay->frames = twinslam::ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
+      replay->camera = twinslam::read_camera_sensor_yaml(dataset.root / "mav0/cam0/sensor.yaml");
+      spdlog::info("feature tracks: {} frames", replay->frames.size());
+    }
+    twinslam::ingest::IngestNode ingest(node, dataset, opt, replay.get());
     const bool finished = ingest.run();
     if (finished && linger) twinslam::wait_for_shutdown(std::chrono::hours(24 * 365));
     return 0;

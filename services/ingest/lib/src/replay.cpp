@@ -9,12 +9,16 @@
 
 namespace twinslam::ingest {
 
-std::vector<ReplayEvent> replay_order(const Dataset& ds) {
+std::vector<ReplayEvent> replay_order(const Dataset& ds, const std::vector<FeatureFrameRecord>* features) {
   std::vector<ReplayEvent> events;
   events.reserve(ds.imu.size() + ds.images.size() + ds.gnss.size());
   for (std::size_t i = 0; i < ds.imu.size(); ++i) events.push_back({ds.imu[i].stamp_ns, Stream::Imu, i});
   for (std::size_t i = 0; i < ds.gnss.size(); ++i) events.push_back({ds.gnss[i].stamp_ns, Stream::Gnss, i});
-  for (std::size_t i = 0; i < ds.images.size(); ++i) events.push_back({ds.images[i].stamp_ns, Stream::Image, i});
+  if (features != nullptr) {
+    for (std::size_t i = 0; i < features->size(); ++i) events.push_back({(*features)[i].stamp_ns, Stream::Features, i});
+  } else {
+    for (std::size_t i = 0; i < ds.images.size(); ++i) events.push_back({ds.images[i].stamp_ns, Stream::Image, i});
+  }
   // Each stream is already strictly increasing; a stable sort by (stamp, stream) keeps that order.
   std::stable_sort(events.begin(), events.end(), [](const ReplayEvent& a, const ReplayEvent& b) {
     return a.stamp_ns != b.stamp_ns ? a.stamp_ns < b.stamp_ns : a.stream < b.stream;

@@ -9,10 +9,12 @@
 #include <opencv2/core/mat.hpp>
 
 #include "twinslam/ingest/dataset.hpp"
+#include "twinslam/ingest/features.hpp"
 
 namespace twinslam::ingest {
 
-enum class Stream : int { Imu = 0, Gnss = 1, Image = 2 };
+// Camera frames are either images or (with --features) ideal feature tracks, never both.
+enum class Stream : int { Imu = 0, Gnss = 1, Image = 2, Features = 3 };
 
 struct ReplayEvent {
   std::int64_t stamp_ns;
@@ -20,7 +22,8 @@ struct ReplayEvent {
   std::size_t index;  // into the dataset's vector for that stream
 };
 
-std::vector<ReplayEvent> replay_order(const Dataset& ds);
+// With `features`, its frames replace the images as the camera stream.
+std::vector<ReplayEvent> replay_order(const Dataset& ds, const std::vector<FeatureFrameRecord>* features = nullptr);
 
 // Loads an image as 8-bit single channel (colour is converted to grey). Throws InputError naming the file when it
 // cannot be decoded or has another depth.
