@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace twinslam::sim {
 
@@ -32,6 +33,8 @@ struct TrajectoryConfig {
   double speed_mps = 2.0;                     // cruise speed [m/s]
   std::array<double, 2> altitude_m{2, 17};    // min/max flight altitude above ground [m]
   std::vector<Eigen::Vector3d> waypoints_W;   // waypoints type only [m, W]
+  double loops = 3;                           // loops type: number of loops around the tallest building
+  double loop_rise_m = 4.5;                   // loops type: altitude gained per loop [m]
 };
 
 struct CameraSimConfig {
@@ -40,6 +43,9 @@ struct CameraSimConfig {
   int height = 400;                           // [px]
   double rate_hz = 20;                        // [Hz]
   double fov_deg = 120;                       // horizontal field of view [deg]
+  // Camera extrinsics (body/IMU <- camera; C: x right, y down, z optical axis). Unset in a file = the default for the
+  // trajectory type (default_T_BC in scenario_io.hpp); load_scenario() and builtin_scenario() always fill it.
+  std::optional<Eigen::Isometry3d> T_BC;
 };
 
 struct ImuSimConfig {

@@ -1,0 +1,133 @@
+// Scenario files: every key read, unknown keys and bad values rejected with the file and the key in the message,
+// built-ins valid, YAML echo reads back to the same scenario.
+#include <gtest/gtest.h>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/sim/scenario_io.hpp"
+
+namespace twinslam::sim {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_scenario_yaml(text, "scen.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(SimScenario, ContractExampleReadsEveryKey) {
+  const Scenario s = parse_scenario_yaml(R"(
+seed: 11
+origin: {lat: 47.5, lon: 8.25, alt: 400.5}
+city:
+  source: procedural
+  size_m: 500
+  height_m: [10, 50]
+  path: null
+trajectory:
+  type: waypoints
+  duration_s: 120
+  speed_mps: 2.5
+  altitude_m: [3, 20]
+  waypoints: [[0, 0, 5], [50, 0, 8], [50, 40, 10]]
+camera: {model: pinhole-radtan, width: 752, height: 480, rate_hz: 10, fov_deg: 90}
+imu: {rate_hz: 400, gyro_noise: 2.0e-3, accel_noise: 9.0e-3, gyro_walk: 4.0e-5, accel_walk: 2.0e-4}
+gnss: {rate_hz: 2, model: gaussian, sigma_m: 0.8}
+twin: {noise_m: 0.3, missing_buildings: 1, added_buildings: 2, offset_m: [1, -2, 0.5]}
+)",
+                                         "scen.yaml");
+  EXPECT_EQ(s.seed, 11u);
+  EXPECT_DOUBLE_EQ(s.origin.lat_deg, 47.5);
+  EXPECT_DOUBLE_EQ(s.origin.alt_m, 400.5);
+  EXPECT_DOUBLE_EQ(s.city.size_m, 500);
+  EXPECT_DOUBLE_EQ(s.city.height_m[1], 50);
+  EXPECT_FALSE(s.city.path.has_value());
+  EXPECT_EQ(s.trajectory.type, "waypoints");
+  ASSERT_EQ(s.trajectory.waypoints_W.size(), 3u);
+  EXPECT_DOUBLE_EQ(s.trajectory.waypoints_W[2].z(), 10);
+  EXPECT_EQ(s.camera.model, "pinhole-radtan");
+  EXPECT_EQ(s.camera.width, 752);
+  EXPECT_DOUBLE_EQ(s.imu.rate_hz, 400);
+  EXPECT_DOUBLE_EQ(s.imu.accel_walk, 2.0e-4);
+  EXPECT_EQ(s.gnss.model, "gaussian");
+  EXPECT_DOUBLE_EQ(s.gnss.sigma_m, 0.8);
+  EXPECT_EQ(s.twin.added_buildings, 2);
+  EXPECT_DOUBLE_EQ(s.twin.offset_m.y(), -2);
+  ASSERT_TRUE(s.camera.T_BC.has_value());  // filled with the default of the type
+}
+
+TEST(SimScenario, ErrorsNameFileAndKey) {
+  EXPECT_EQ(error_of("imu: {rate_hz: 0}\n"), "scen.yaml:1: imu.rate_hz: must be > 0 and <= 10000");
+  EXPECT_NE(error_of("imu:\n  rate_hz: 200\n  gyro_nois: 1\n").find("scen.yaml:3: imu.gyro_nois: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of("colour: red\n").find("scen.yaml:1: colour: unknown key"), std::string::npos);
+  EXPECT_NE(error_of("trajectory:\n  speed_mps: fast\n").find("scen.yaml:2: trajectory.speed_mps: expected a number"),
+            std::string::npos);
+  EXPECT_NE(error_of("trajectory: {type: spiral}\n").find("trajectory.type: 'spiral' is not one of"), std::string::npos);
+  EXPECT_NE(error_of("city: {height_m: [30, 10]}\n").find("city.height_m:"), std::string::npos);
+  EXPECT_NE(error_of("city: {source: osm}\n").find("city.path: required"), std::string::npos);
+  EXPECT_NE(error_of("twin: {offset_m: [1, 2]}\n").find("twin.offset_m: expected a list of 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(error_of("trajectory: {type: waypoints}\n").find("trajectory.waypoints:"), std::string::npos);
+  EXPECT_NE(error_of("camera: {T_BC: [2,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}\n").find("camera.T_BC: rotation"),
+            std::string::npos);
+  EXPECT_NE(error_of("seed: [1\n").find("scen.yaml:"), std::string::npos);  // malformed YAML
+  EXPECT_NE(error_of("base: nowhere\n").find("scen.yaml:1: base: unknown scenario 'nowhere'"), std::string::npos);
+}
+
+TEST(SimScenario, BuiltinsAreValidAndDistinct) {
+  for (const auto& name : builtin_scenario_names()) {
+    const Scenario s = builtin_scenario(name);
+    EXPECT_EQ(s.name, name);
+    EXPECT_TRUE(s.camera.T_BC.has_value());
+    EXPECT_EQ(s.camera.width, 640);
+    EXPECT_EQ(s.camera.height, 400);
+  }
+  EXPECT_EQ(builtin_scenario("city-loops").trajectory.type, "loops");
+  EXPECT_EQ(builtin_scenario("city-survey").trajectory.type, "survey");
+  EXPECT_LE(builtin_scenario("tiny").trajectory.duration_s, 30);
+  EXPECT_THROW(builtin_scenario("mars"), UsageError);
+  EXPECT_THROW(load_scenario("/nonexistent/scen.yaml"), InputError);
+}
+
+TEST(SimScenario, BaseOverridesBuiltinAndKeepsTheRest) {
+  const Scenario s = parse_scenario_yaml("base: city-loops\nseed: 3\ntrajectory: {type: survey, altitude_m: [70, 80]}\n",
+                                         "scen.yaml");
+  EXPECT_EQ(s.seed, 3u);
+  EXPECT_DOUBLE_EQ(s.trajectory.speed_mps, builtin_scenario("city-loops").trajectory.speed_mps);
+  // The base's extrinsics were its type's default, so the survey gets the survey default (down-forward).
+  EXPECT_TRUE(s.camera.T_BC->isApprox(default_T_BC("survey")));
+}
+
+TEST(SimScenario, DefaultExtrinsicsLookForwardOrDownForward) {
+  const Eigen::Vector3d axis_loops = default_T_BC("loops").linear().col(2);   // optical axis in B
+  const Eigen::Vector3d axis_survey = default_T_BC("survey").linear().col(2);
+  EXPECT_TRUE(axis_loops.isApprox(Eigen::Vector3d(1, 0, 0)));
+  EXPECT_TRUE(axis_survey.isApprox(Eigen::Vector3d(std::sqrt(0.5), 0, -std::sqrt(0.5))));
+  // Image "down" (y_C) points down in the body for a level forward camera.
+  EXPECT_TRUE(default_T_BC("loops").linear().col(1).isApprox(Eigen::Vector3d(0, 0, -1)));
+  EXPECT_NEAR(default_T_BC("survey").linear().determinant(), 1.0, 1e-12);
+}
+
+TEST(SimScenario, YamlEchoReadsBackIdentically) {
+  Scenario s = builtin_scenario("city-survey");
+  s.seed = 1234567890123ull;
+  s.origin.lat_deg = 47.376912345678901;
+  s.city.path = "some \"odd\" path.osm";
+  s.city.crs = "EPSG:2056";
+  s.trajectory.waypoints_W = {Eigen::Vector3d(0.1, 0.2, 70.3), Eigen::Vector3d(10, 20, 71)};
+  s.imu.gyro_noise = 1.0 / 3.0;
+  const std::string text = scenario_to_yaml(s);
+  const Scenario r = parse_scenario_yaml(text, "echo.yaml");
+  EXPECT_EQ(scenario_to_yaml(r), text);
+  EXPECT_EQ(r.seed, s.seed);
+  EXPECT_EQ(r.origin.lat_deg, s.origin.lat_deg);  // exact: shortest round-trip numbers
+  EXPECT_EQ(r.imu.gyro_noise, s.imu.gyro_noise);
+  EXPECT_EQ(*r.city.path, *s.city.path);
+  EXPECT_TRUE(r.camera.T_BC->isApprox(*s.camera.T_BC, 0.0));
+}
+
+}  // namespace
+}  // namespace twinslam::sim
