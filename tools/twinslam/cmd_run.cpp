@@ -11,7 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include <Eigen/Eigenvalues>
+
 #include "monitor.hpp"
+#include "run_record.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
 #include "twinslam/core/shutdown.hpp"
@@ -31,6 +34,36 @@ struct RunOptions {
 };
 
 bool uses_twin(const std::string& mode) { return mode.rfind("vio-twin", 0) == 0; }
+
+Eigen::Isometry3d to_iso(const msg::Pose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(p.q().w(), p.q().x(), p.q().y(), p.q().z()).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(p.p().x(), p.p().y(), p.p().z());
+  return T;
+}
+
+OdometryRecord to_record(const msg::Odometry& m) {
+  return {m.stamp_ns(), to_iso(m.T_WB()), to_iso(m.T_LB()), m.estimator_ms()};
+}
+
+RegistrationRecord to_record(const msg::Registration& m) {
+  RegistrationRecord r;
+  r.stamp_ns = m.keyframe_stamp_ns();
+  r.accepted = m.status() == msg::REG_ACCEPTED;
+  r.rmse_m = m.rmse_m();
+  r.inliers = m.inliers();
+  r.fitness = m.fitness();
+  r.time_ms = m.compute_ms();
+  const Eigen::Matrix<double, 6, 6, Eigen::RowMajor> info(m.information().data());
+  r.info_eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(info).eigenvalues();
+  const Eigen::Isometry3d T = to_iso(m.correction_W());
+  r.dp_m = T.translation();
+  // Roll, pitch, yaw (ZYX) of the correction.
+  const Eigen::Matrix3d R = T.linear();
+  r.drpy_deg = Eigen::Vector3d(std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0)),
+                               std::atan2(R(1, 0), R(0, 0))) * 180.0 / M_PI;
+  return r;
+}
 
 int pick_domain(int requested) {
   if (requested >= 0) return requested;
@@ -52,7 +85,19 @@ int run_pipeline(const RunOptions& o) {
   cfg.vehicle_id = o.vehicle;
   cfg.domain = domain;
   dds::Node recorder(cfg);
-  TopicMonitor monitor(recorder, /*reliable=*/true);
+  RunRecord record;
+  const auto since_ms = [wall0] {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
+  };
+  MonitorHooks hooks;
+  hooks.image = [&](const msg::Image& m) { record.frame_in(m.stamp_ns(), since_ms()); };
+  hooks.features = [&](const msg::FeatureFrame& m) {
+    if (o.features) record.frame_in(m.stamp_ns(), since_ms());
+    record.features(m.stamp_ns(), m.tracking_ms());
+  };
+  hooks.odometry = [&](const msg::Odometry& m) { record.odometry(to_record(m), since_ms()); };
+  hooks.registration = [&](const msg::Registration& m) { record.registration(to_record(m)); };
+  TopicMonitor monitor(recorder, /*reliable=*/true, hooks);
 
   const std::string replay = o.realtime ? "--realtime" : "--max";
   // With --features the dataset's ideal tracks replace the image frontend.
@@ -116,7 +161,8 @@ int run_pipeline(const RunOptions& o) {
                      {"domain", domain},
                      {"messages", messages},
                      {"services", svc},
-                     {"note", "estimator not implemented yet: no trajectory is written"}};
+                     {"poses", record.odometry_count()}};
+  record.write(out);
   std::ofstream(out / "run.json") << run.dump(2) << '\n';
 
   std::printf("run %s: %s in %.1f s (mode %s, %s replay, domain %d)\n", out.string().c_str(), status.c_str(), wall_s,

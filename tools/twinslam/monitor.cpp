@@ -1,13 +1,25 @@
 #include "monitor.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "twinslam/dds/dispatch.hpp"
 #include "twinslam/dds/msg_json.hpp"
 
 namespace twinslam::cli {
 
-TopicMonitor::TopicMonitor(dds::Node& node, bool reliable) {
+namespace {
+template <class T>
+const std::function<void(const T&)>* hook_for(const MonitorHooks& h) {
+  if constexpr (std::is_same_v<T, msg::Image>) return &h.image;
+  if constexpr (std::is_same_v<T, msg::FeatureFrame>) return &h.features;
+  if constexpr (std::is_same_v<T, msg::Odometry>) return &h.odometry;
+  if constexpr (std::is_same_v<T, msg::Registration>) return &h.registration;
+  return nullptr;
+}
+}  // namespace
+
+TopicMonitor::TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks) : hooks_(std::move(hooks)) {
   for (const auto& spec : dds::topics::kAll) {
     const auto profile = reliable ? dds::reader_profile(spec.family) : dds::kMonitorReaderProfile;
     if (spec.name == dds::topics::kHeartbeat.name) {
@@ -21,7 +33,10 @@ TopicMonitor::TopicMonitor(dds::Node& node, bool reliable) {
       continue;
     }
     dds::with_message_type(spec, [&]<class T>() {
-      const auto& st = node.subscribe<T>(spec, [](const T&) {}, profile);
+      const auto* hook = hook_for<T>(hooks_);
+      const auto& st = node.subscribe<T>(spec, [hook](const T& m) {
+        if (hook != nullptr && *hook) (*hook)(m);
+      }, profile);
       entries_.push_back({&spec, &st});
     });
   }

@@ -1,6 +1,7 @@
 #pragma once
 // Watches every topic of the table: message counts, matched writers, and the latest heartbeat of each service.
 // Used by `twinslam topics` (best effort, never slows the pipeline) and by `twinslam run` (reliable, exact counts).
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -23,9 +24,17 @@ struct ServiceInfo {
   std::map<std::string, unsigned long long> counters;
 };
 
+// Optional callbacks for topics whose content (not just count) a tool records.
+struct MonitorHooks {
+  std::function<void(const msg::Image&)> image;
+  std::function<void(const msg::FeatureFrame&)> features;
+  std::function<void(const msg::Odometry&)> odometry;
+  std::function<void(const msg::Registration&)> registration;
+};
+
 class TopicMonitor {
  public:
-  TopicMonitor(dds::Node& node, bool reliable);
+  TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks = {});
   std::vector<TopicStats> stats() const;
   std::vector<ServiceInfo> services() const;  // latest heartbeat per instance, sorted by service
   // True once every named service has announced ready/running/done.
@@ -37,6 +46,7 @@ class TopicMonitor {
     const dds::ReaderStatus* status;
   };
   std::vector<Entry> entries_;
+  MonitorHooks hooks_;
   mutable std::mutex mutex_;
   std::map<std::string, ServiceInfo> services_;
 };

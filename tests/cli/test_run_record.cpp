@@ -1,0 +1,76 @@
+// The run outputs of CONTRACTS.md: trajectory.tum / trajectory_local.tum read back to the poses recorded,
+// timing.csv has one row per pose with end-to-end time from this process's clock, registrations.csv has the
+// contract's columns.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "run_record.hpp"
+#include "twinslam/core/csv.hpp"
+#include "twinslam/trajectory/io.hpp"
+
+namespace fs = std::filesystem;
+using namespace twinslam;
+
+TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
+  cli::RunRecord rec;
+  for (int k = 0; k < 5; ++k) {
+    const std::int64_t stamp = 1'000'000'000LL + k * 50'000'000LL;
+    rec.frame_in(stamp, 100.0 * k);
+    rec.features(stamp, 2.5);
+    cli::OdometryRecord o;
+    o.stamp_ns = stamp;
+    o.T_LB.translation() = Eigen::Vector3d(k, 0, 0);
+    o.T_WB = Eigen::Translation3d(10, 20, 0) * Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) * o.T_LB;
+    o.estimator_ms = 4.0;
+    rec.odometry(o, 100.0 * k + 7.5);
+  }
+  cli::RegistrationRecord r;
+  r.stamp_ns = 1'100'000'000LL;
+  r.accepted = true;
+  r.info_eigenvalues << 1, 2, 3, 4, 5, 6;
+  rec.registration(r);
+  const fs::path dir = fs::temp_directory_path() / ("twinslam_runrec_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto files = rec.write(dir);
+  EXPECT_EQ(files.size(), 4u);
+
+  const auto world = read_tum(dir / "trajectory.tum");
+  const auto local = read_tum(dir / "trajectory_local.tum");
+  ASSERT_EQ(world.size(), 5u);
+  ASSERT_EQ(local.size(), 5u);
+  EXPECT_EQ(world.poses[3].stamp_ns, 1'150'000'000LL);
+  EXPECT_NEAR((local.poses[3].p_X() - Eigen::Vector3d(3, 0, 0)).norm(), 0, 1e-9);
+  const Eigen::Vector3d expected_W = Eigen::Vector3d(10, 20, 0) + Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) *
+                                                                       Eigen::Vector3d(3, 0, 0);
+  EXPECT_NEAR((world.poses[3].p_X() - expected_W).norm(), 0, 1e-6);
+
+  std::size_t rows = 0;
+  read_csv(dir / "timing.csv", 4, [&](const CsvRow& row) {
+    if (row.line == 1) return;  // header
+    EXPECT_DOUBLE_EQ(parse_double(dir / "timing.csv", row, 1, "tracking_ms"), 2.5);
+    EXPECT_DOUBLE_EQ(parse_double(dir / "timing.csv", row, 3, "end_to_end_ms"), 7.5);
+    ++rows;
+  });
+  EXPECT_EQ(rows, 5u);
+  std::size_t regs = 0;
+  read_csv(dir / "registrations.csv", 18, [&](const CsvRow& row) {
+    if (row.line == 1) return;
+    EXPECT_EQ(row.cells[1], "1");
+    EXPECT_EQ(row.cells[11], "6");
+    ++regs;
+  });
+  EXPECT_EQ(regs, 1u);
+  fs::remove_all(dir);
+}
+
+TEST(RunRecord, WithoutOdometryWritesNoTrajectory) {
+  cli::RunRecord rec;
+  const fs::path dir = fs::temp_directory_path() / ("twinslam_runrec_empty_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  rec.write(dir);
+  EXPECT_FALSE(fs::exists(dir / "trajectory.tum"));
+  EXPECT_TRUE(fs::exists(dir / "timing.csv"));
+  fs::remove_all(dir);
+}

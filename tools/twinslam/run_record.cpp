@@ -1,0 +1,85 @@
+#include "run_record.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/trajectory/io.hpp"
+
+namespace twinslam::cli {
+
+void RunRecord::frame_in(std::int64_t stamp_ns, double wall_ms) {
+  std::lock_guard lock(mutex_);
+  frame_wall_ms_.emplace(stamp_ns, wall_ms);
+}
+
+void RunRecord::features(std::int64_t stamp_ns, double tracking_ms) {
+  std::lock_guard lock(mutex_);
+  tracking_ms_[stamp_ns] = tracking_ms;
+}
+
+void RunRecord::odometry(const OdometryRecord& r, double wall_ms) {
+  std::lock_guard lock(mutex_);
+  const auto it = frame_wall_ms_.find(r.stamp_ns);
+  // End to end: from the frame leaving ingest (as seen here) to its pose arriving here; -1 when unknown.
+  odometry_.emplace_back(r, it == frame_wall_ms_.end() ? -1.0 : wall_ms - it->second);
+}
+
+void RunRecord::registration(const RegistrationRecord& r) {
+  std::lock_guard lock(mutex_);
+  registrations_.push_back(r);
+}
+
+std::size_t RunRecord::odometry_count() const {
+  std::lock_guard lock(mutex_);
+  return odometry_.size();
+}
+
+std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path& dir) const {
+  std::lock_guard lock(mutex_);
+  std::vector<std::filesystem::path> written;
+  if (!odometry_.empty()) {
+    Trajectory world, local;
+    for (const auto& [o, _] : odometry_) {
+      // A pose repeated for the same stamp (re-publication) keeps the first: TUM stamps must increase.
+      if (!world.poses.empty() && o.stamp_ns <= world.poses.back().stamp_ns) continue;
+      world.poses.push_back({o.stamp_ns, o.T_WB});
+      local.poses.push_back({o.stamp_ns, o.T_LB});
+    }
+    write_tum(dir / "trajectory.tum", world);
+    write_tum(dir / "trajectory_local.tum", local);
+    written.push_back(dir / "trajectory.tum");
+    written.push_back(dir / "trajectory_local.tum");
+  }
+  {
+    std::ofstream f(dir / "timing.csv");
+    if (!f) throw InputError((dir / "timing.csv").string() + ": cannot write");
+    f << "stamp_ns,tracking_ms,estimator_ms,end_to_end_ms\n";
+    for (const auto& [o, e2e] : odometry_) {
+      const auto t = tracking_ms_.find(o.stamp_ns);
+      char line[160];
+      std::snprintf(line, sizeof(line), "%lld,%.3f,%.3f,%.3f\n", static_cast<long long>(o.stamp_ns),
+                    t == tracking_ms_.end() ? 0.0 : t->second, o.estimator_ms, e2e);
+      f << line;
+    }
+    written.push_back(dir / "timing.csv");
+  }
+  {
+    std::ofstream f(dir / "registrations.csv");
+    if (!f) throw InputError((dir / "registrations.csv").string() + ": cannot write");
+    f << "stamp_ns,accepted,rmse_m,inliers,fitness,time_ms,ev1,ev2,ev3,ev4,ev5,ev6,dx_m,dy_m,dz_m,droll_deg,"
+         "dpitch_deg,dyaw_deg\n";
+    for (const auto& r : registrations_) {
+      f << r.stamp_ns << ',' << (r.accepted ? 1 : 0) << ',' << r.rmse_m << ',' << r.inliers << ',' << r.fitness << ','
+        << r.time_ms;
+      for (int i = 0; i < 6; ++i) f << ',' << r.info_eigenvalues[i];
+      for (int i = 0; i < 3; ++i) f << ',' << r.dp_m[i];
+      for (int i = 0; i < 3; ++i) f << ',' << r.drpy_deg[i];
+      f << '\n';
+    }
+    written.push_back(dir / "registrations.csv");
+  }
+  return written;
+}
+
+}  // namespace twinslam::cli

@@ -1,0 +1,51 @@
+#pragma once
+// What `twinslam run` writes besides run.json (CONTRACTS.md "Run outputs"): trajectory.tum (T_WB as estimated live),
+// trajectory_local.tum (T_LB), timing.csv and registrations.csv. Pure bookkeeping, fed from the recorder's DDS
+// callbacks; all times it measures come from this one process's clock, so nothing assumes services share a clock.
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace twinslam::cli {
+
+struct OdometryRecord {
+  std::int64_t stamp_ns = 0;
+  Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d T_LB = Eigen::Isometry3d::Identity();
+  double estimator_ms = 0;
+};
+
+struct RegistrationRecord {
+  std::int64_t stamp_ns = 0;
+  bool accepted = false;
+  double rmse_m = 0, fitness = 0, time_ms = 0;
+  std::uint32_t inliers = 0;
+  Eigen::Matrix<double, 6, 1> info_eigenvalues = Eigen::Matrix<double, 6, 1>::Zero();
+  Eigen::Vector3d dp_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d drpy_deg = Eigen::Vector3d::Zero();  // roll, pitch, yaw of the correction [deg]
+};
+
+class RunRecord {
+ public:
+  // Thread-safe: called from DDS listener threads. `wall_ms` is this process's steady clock in ms.
+  void frame_in(std::int64_t stamp_ns, double wall_ms);                 // image or feature frame sent by ingest
+  void features(std::int64_t stamp_ns, double tracking_ms);
+  void odometry(const OdometryRecord& r, double wall_ms);
+  void registration(const RegistrationRecord& r);
+
+  std::size_t odometry_count() const;
+  // Writes the four files into `dir` (trajectories only when there is odometry). Returns the files written.
+  std::vector<std::filesystem::path> write(const std::filesystem::path& dir) const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::int64_t, double> frame_wall_ms_, tracking_ms_;
+  std::vector<std::pair<OdometryRecord, double>> odometry_;  // with end-to-end ms
+  std::vector<RegistrationRecord> registrations_;
+};
+
+}  // namespace twinslam::cli
