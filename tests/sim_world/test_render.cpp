@@ -1,0 +1,146 @@
+// Renderer: bit-identical images per seed (any thread count), world corners land where the camera model projects
+// them (both models), ray casts and visibility give known answers, and a city frame has enough corners for KLT.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "sim_world_test_utils.hpp"
+#include "twinslam/sim/world/city.hpp"
+#include "twinslam/sim/world/renderer.hpp"
+
+namespace twinslam::sim {
+namespace {
+
+using testing::fisheye_120;
+using testing::look_at;
+using testing::pinhole_90;
+
+const City& city() {
+  static const City c = build_city(CityConfig{}, 7);
+  return c;
+}
+
+// A view like the loops trajectory: 10 m up, 45 m from the tower, looking at it.
+Eigen::Isometry3d loops_view() { return look_at({45, 0, 10}, {0, 0, 25}); }
+
+TEST(SimWorldRender, SameSeedSameImageAnyThreadCount) {
+  RenderConfig one;
+  one.threads = 1;
+  const Renderer a(city().mesh), b(build_city(CityConfig{}, 7).mesh, one);
+  const auto cam = fisheye_120();
+  const cv::Mat ia = a.render(loops_view(), *cam, 42), ib = b.render(loops_view(), *cam, 42);
+  ASSERT_EQ(ia.type(), CV_8UC1);
+  ASSERT_EQ(ia.cols, 640);
+  ASSERT_EQ(ia.rows, 400);
+  EXPECT_EQ(cv::norm(ia, ib, cv::NORM_INF), 0.0);
+}
+
+TEST(SimWorldRender, DifferentSeedsDiffer) {
+  const Renderer r(city().mesh);
+  const auto cam = fisheye_120();
+  const cv::Mat base = r.render(loops_view(), *cam, 1);
+  // Another noise seed: small differences in most pixels.
+  const cv::Mat noise = r.render(loops_view(), *cam, 2);
+  cv::Mat diff;
+  cv::absdiff(base, noise, diff);
+  EXPECT_GT(cv::countNonZero(diff), base.total() / 2);
+  EXPECT_LT(cv::mean(diff)[0], 4.0);
+  // Another city: a different picture.
+  const Renderer other(build_city(CityConfig{}, 8).mesh);
+  cv::absdiff(base, other.render(loops_view(), *cam, 1), diff);
+  EXPECT_GT(cv::mean(diff)[0], 10.0);
+}
+
+// One box against the sky; the camera sits inside the box's x and z extent, so only its front face (y = 25) is seen
+// and the face's top-left corner is a silhouette corner.
+TriMesh single_box() {
+  TriMesh m;
+  add_box(&m, {-4, 25, -3}, {6, 35, 8}, SurfaceKind::kFacade, SurfaceKind::kRoof, 0, true);
+  return m;
+}
+
+// Least-squares line x = a + b y through (y, x) samples.
+Eigen::Vector2d fit(const std::vector<Eigen::Vector2d>& yx) {
+  Eigen::MatrixXd A(yx.size(), 2);
+  Eigen::VectorXd x(yx.size());
+  for (std::size_t i = 0; i < yx.size(); ++i) A.row(i) << 1, yx[i][0], x[i] = yx[i][1];
+  return A.colPivHouseholderQr().solve(x);
+}
+
+// The silhouette corner measured in the image: the box's left edge (first dark pixel scanning right, rows below
+// the corner) and top edge (first dark pixel scanning down, columns right of the corner), each a line fitted over
+// 18 px, intersected. Single-sample rendering quantizes each edge to a pixel boundary; the fit averages that out.
+Eigen::Vector2d measured_corner(const cv::Mat& image, const Eigen::Vector2d& guess) {
+  constexpr int kDark = 195;  // sky >= 205, surfaces <= 184 (+ noise)
+  const int u0 = static_cast<int>(std::lround(guess.x())), v0 = static_cast<int>(std::lround(guess.y()));
+  std::vector<Eigen::Vector2d> left, top;  // (v, u_edge) and (u, v_edge)
+  for (int k = 3; k <= 20; ++k) {
+    for (int u = u0 - 15; u <= u0 + 15; ++u)
+      if (image.at<std::uint8_t>(v0 + k, u) < kDark) {
+        left.emplace_back(v0 + k, u - 0.5);
+        break;
+      }
+    for (int v = v0 - 15; v <= v0 + 15; ++v)
+      if (image.at<std::uint8_t>(v, u0 + k) < kDark) {
+        top.emplace_back(u0 + k, v - 0.5);
+        break;
+      }
+  }
+  EXPECT_EQ(left.size(), 18u);
+  EXPECT_EQ(top.size(), 18u);
+  const Eigen::Vector2d l = fit(left), t = fit(top);  // u = l0 + l1 v, v = t0 + t1 u
+  const double u = (l[0] + l[1] * t[0]) / (1 - l[1] * t[1]);
+  return {u, t[0] + t[1] * u};
+}
+
+void expect_corner_within_1px(const CameraModel& cam, const Eigen::Isometry3d& T_WC) {
+  const Renderer r(single_box());
+  const cv::Mat image = r.render(T_WC, cam, 3);
+  const Eigen::Vector3d corner_W(-4, 25, 8);
+  Eigen::Vector2d projected;
+  ASSERT_EQ(cam.project(T_WC.inverse() * corner_W, &projected), ProjectionStatus::kOk);
+  ASSERT_TRUE(cam.in_image(projected, 40));
+  const Eigen::Vector2d measured = measured_corner(image, projected);
+  EXPECT_LT((measured - projected).norm(), 1.0) << "projected " << projected.transpose() << " measured "
+                                                << measured.transpose();
+}
+
+TEST(SimWorldRender, ProjectedCornerLandsOnRenderedCornerFisheye) {
+  const auto cam = fisheye_120();
+  expect_corner_within_1px(*cam, look_at({0.5, 0, 0.5}, {3, 25, 1}));    // corner far off-centre (about 40 deg)
+  expect_corner_within_1px(*cam, look_at({1, 0, 2}, {-2, 25, 6}));       // corner near the centre
+}
+
+TEST(SimWorldRender, ProjectedCornerLandsOnRenderedCornerPinhole) {
+  const auto cam = pinhole_90();
+  expect_corner_within_1px(*cam, look_at({0.5, 0, 0.5}, {2, 25, 3}));
+  expect_corner_within_1px(*cam, look_at({1, 0, 2}, {-2, 25, 6}));
+}
+
+TEST(SimWorldRender, RaycastAndVisibilityHaveKnownAnswers) {
+  const Renderer r(single_box());
+  const auto t = r.raycast({0, 0, 0}, {0, 2, 0});  // direction need not be unit
+  ASSERT_TRUE(t.has_value());
+  EXPECT_NEAR(*t, 25.0, 1e-4);
+  EXPECT_FALSE(r.raycast({0, 0, 0}, {0, -1, 0}).has_value());
+  const Eigen::Vector3d c_W(0, 0, 0);
+  EXPECT_TRUE(r.visible({1, 25, 1}, c_W));    // on the front face
+  EXPECT_FALSE(r.visible({1, 35, 1}, c_W));   // on the back face, behind the front
+  EXPECT_TRUE(r.visible({1, 20, 1}, c_W));    // free space in front
+}
+
+TEST(SimWorldRender, CityFrameHasEnoughShiTomasiCorners) {
+  const Renderer r(city().mesh);
+  const auto cam = fisheye_120();
+  for (const Eigen::Isometry3d& T_WC : {loops_view(), look_at({-80, -60, 10}, {-40, -20, 0})}) {
+    const cv::Mat image = r.render(T_WC, *cam, 9);
+    std::vector<cv::Point2f> corners;
+    cv::goodFeaturesToTrack(image, corners, 1000, 0.01, 8);
+    EXPECT_GE(corners.size(), 150u);
+  }
+}
+
+}  // namespace
+}  // namespace twinslam::sim

@@ -1,0 +1,111 @@
+// Twin derivation: details gone, missing buildings absent from the twin only, added boxes in empty lots, whole-twin
+// offset, and a surface distance to the world of about noise_m.
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/sim/world/surface_distance.hpp"
+#include "twinslam/sim/world/twin.hpp"
+
+namespace twinslam::sim {
+namespace {
+
+const City& world() {
+  static const City city = [] {
+    CityConfig config;
+    config.size_m = 300;
+    return build_city(config, 11);
+  }();
+  return city;
+}
+
+std::set<int> building_ids(const TriMesh& m) { return {m.building_id.begin(), m.building_id.end()}; }
+
+TEST(SimWorldTwin, MissingBuildingIsAbsentFromTheTwinOnly) {
+  TwinConfig config;
+  config.missing_buildings = 1;
+  const Twin twin = derive_twin(world(), config, 5);
+  ASSERT_EQ(twin.missing_building_ids.size(), 1u);
+  const int gone = twin.missing_building_ids[0];
+  EXPECT_NE(gone, world().tallest_id);
+  const std::set<int> in_world = building_ids(world().mesh), in_twin = building_ids(twin.mesh);
+  EXPECT_TRUE(in_world.count(gone));
+  EXPECT_FALSE(in_twin.count(gone));
+  for (int id : in_world)
+    if (id != gone) {
+      EXPECT_TRUE(in_twin.count(id)) << "building " << id << " lost";
+    }
+}
+
+TEST(SimWorldTwin, DetailsAreRemovedAndSeedChoosesTheMissingBuilding) {
+  TwinConfig config;
+  config.missing_buildings = 3;
+  const Twin a = derive_twin(world(), config, 5), b = derive_twin(world(), config, 5), c = derive_twin(world(), config, 6);
+  for (SurfaceKind k : a.mesh.kind) ASSERT_NE(k, SurfaceKind::kDetail);
+  EXPECT_EQ(a.mesh.p_W, b.mesh.p_W);
+  EXPECT_EQ(a.missing_building_ids, b.missing_building_ids);
+  EXPECT_NE(a.mesh.p_W, c.mesh.p_W);
+}
+
+TEST(SimWorldTwin, AddedBuildingsStandInEmptyLots) {
+  TwinConfig config;
+  config.added_buildings = 2;
+  const Twin twin = derive_twin(world(), config, 5);
+  ASSERT_EQ(twin.added_building_ids.size(), 2u);
+  for (int id : twin.added_building_ids) {
+    EXPECT_GE(id, static_cast<int>(world().buildings.size()));
+    bool inside_a_lot = false;
+    for (std::size_t i = 0; i < twin.mesh.num_triangles(); ++i) {
+      if (twin.mesh.building_id[i] != id) continue;
+      const Eigen::Vector3d p = twin.mesh.p_W[twin.mesh.triangles[i][0]];
+      inside_a_lot = false;
+      for (const auto& lot : world().empty_lots_W)
+        inside_a_lot |= p.x() >= lot[0] && p.x() <= lot[2] && p.y() >= lot[1] && p.y() <= lot[3];
+      ASSERT_TRUE(inside_a_lot) << "added building " << id << " outside every empty lot";
+    }
+    EXPECT_TRUE(inside_a_lot);
+  }
+}
+
+TEST(SimWorldTwin, OffsetTranslatesTheWholeTwin) {
+  TwinConfig config;
+  const Twin plain = derive_twin(world(), config, 5);
+  config.offset_m = Eigen::Vector3d(1.5, -2.0, 0.25);
+  const Twin moved = derive_twin(world(), config, 5);
+  ASSERT_EQ(plain.mesh.p_W.size(), moved.mesh.p_W.size());
+  for (std::size_t i = 0; i < plain.mesh.p_W.size(); ++i)
+    ASSERT_LT((moved.mesh.p_W[i] - plain.mesh.p_W[i] - config.offset_m).norm(), 1e-9);
+}
+
+TEST(SimWorldTwin, SurfaceDistanceIsAboutNoise) {
+  TwinConfig config;
+  config.noise_m = 0.0;
+  const SurfaceDistance exact = surface_distance(derive_twin(world(), config, 5).mesh, world().mesh, 4000, 1);
+  EXPECT_LT(exact.rms_m, 1e-4);  // a noise-free twin lies on world surfaces (floats inside Embree only cull)
+  config.noise_m = 0.2;
+  const SurfaceDistance noisy = surface_distance(derive_twin(world(), config, 5).mesh, world().mesh, 20000, 1);
+  EXPECT_GT(noisy.rms_m, 0.1);
+  EXPECT_LT(noisy.rms_m, 0.4);
+  EXPECT_GT(noisy.median_m, 0.03);
+}
+
+TEST(SimWorldTwin, OutOfRangeValuesNameTheKey) {
+  TwinConfig config;
+  config.noise_m = -1;
+  try {
+    derive_twin(world(), config, 1);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("twin.noise_m"), std::string::npos);
+  }
+  config = TwinConfig{};
+  config.missing_buildings = 100000;
+  EXPECT_THROW(derive_twin(world(), config, 1), InputError);
+  config = TwinConfig{};
+  config.added_buildings = 100000;
+  EXPECT_THROW(derive_twin(world(), config, 1), InputError);
+}
+
+}  // namespace
+}  // namespace twinslam::sim

@@ -1,0 +1,90 @@
+#include "twinslam/sim/world/texture.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "twinslam/sim/world/random.hpp"
+
+namespace twinslam::sim {
+namespace {
+
+// Hash of an integer lattice cell to [0, 1).
+float cell(std::int64_t i, std::int64_t j, std::uint64_t salt) {
+  const std::uint64_t h = hash64(salt ^ hash64(static_cast<std::uint64_t>(i) * 0x9E3779B1ULL ^
+                                               hash64(static_cast<std::uint64_t>(j))));
+  return static_cast<float>(h >> 40) * 0x1.0p-24f;
+}
+
+// Bilinear value noise in [0, 1) with smoothstep weights.
+float value_noise(double s, double t, std::uint64_t salt) {
+  const double fs = std::floor(s), ft = std::floor(t);
+  const auto i = static_cast<std::int64_t>(fs), j = static_cast<std::int64_t>(ft);
+  double a = s - fs, b = t - ft;
+  a = a * a * (3 - 2 * a);
+  b = b * b * (3 - 2 * b);
+  const float v00 = cell(i, j, salt), v10 = cell(i + 1, j, salt), v01 = cell(i, j + 1, salt),
+              v11 = cell(i + 1, j + 1, salt);
+  return static_cast<float>((v00 * (1 - a) + v10 * a) * (1 - b) + (v01 * (1 - a) + v11 * a) * b);
+}
+
+// Contrast kept for a pattern of period `period_m` seen at `footprint_m` per pixel: 1 above 4 px, 0 below 2 px.
+float keep(double period_m, double footprint_m) {
+  const double px = period_m / std::max(footprint_m, 1e-6);
+  return static_cast<float>(std::clamp((px - 2.0) / 2.0, 0.0, 1.0));
+}
+
+// Grid of slabs/tiles: per-cell tone with dark joints; the mean is blended in when the cells get too small.
+float tiles(double s, double t, double size_s, double size_t, double joint, float lo, float hi, std::uint64_t salt,
+            double footprint_m) {
+  const double cs = s / size_s, ct = t / size_t;
+  const double fs = cs - std::floor(cs), ft = ct - std::floor(ct);
+  float v = lo + (hi - lo) * cell(static_cast<std::int64_t>(std::floor(cs)), static_cast<std::int64_t>(std::floor(ct)), salt);
+  if (fs < joint / size_s || ft < joint / size_t) v *= 0.55f;
+  const float mean = 0.5f * (lo + hi) * 0.95f;
+  return mean + keep(std::min(size_s, size_t), footprint_m) * (v - mean);
+}
+
+}  // namespace
+
+float albedo(const Eigen::Vector3d& p, const Eigen::Vector3d& n, SurfaceKind kind, int building, double footprint_m) {
+  // Planar texture coordinates from the dominant normal axis (the city is axis-aligned; slopes use their plan view).
+  const Eigen::Vector3d a = n.cwiseAbs();
+  double s, t;
+  if (a.z() >= a.x() && a.z() >= a.y()) s = p.x(), t = p.y();
+  else if (a.x() >= a.y()) s = p.y(), t = p.z();
+  else s = p.x(), t = p.z();
+  const float grain = value_noise(s * 4.0, t * 4.0, 11) - 0.5f;  // fine surface grain, 0.25 m
+  const float grain_keep = keep(0.5, footprint_m);
+  float v = 0.4f;
+  switch (kind) {
+    case SurfaceKind::kGround: {
+      // Paving slabs under a slowly varying wear pattern.
+      v = tiles(s, t, 2.0, 2.0, 0.08, 0.22f, 0.48f, 21, footprint_m);
+      v *= 0.75f + 0.5f * value_noise(s / 15.0, t / 15.0, 22);
+      break;
+    }
+    case SurfaceKind::kFacade: {
+      const std::uint64_t b = static_cast<std::uint64_t>(building + 1);
+      const float wall = 0.32f + 0.3f * cell(building, 0, 31);
+      const double cs = s / 3.0, ct = t / 3.0;  // one window per 3 m bay and 3 m storey
+      const double fs = cs - std::floor(cs), ft = ct - std::floor(ct);
+      const bool window = fs > 0.22 && fs < 0.78 && ft > 0.3 && ft < 0.82;
+      const float glass = 0.05f + 0.3f * cell(static_cast<std::int64_t>(std::floor(cs)),
+                                               static_cast<std::int64_t>(std::floor(ct)), 32 + b);
+      const float mean = 0.71f * wall + 0.29f * 0.2f;
+      v = mean + keep(3.0, footprint_m) * ((window ? glass : wall) - mean);
+      break;
+    }
+    case SurfaceKind::kRoof:
+      v = a.z() > 0.95 ? tiles(s, t, 1.2, 1.2, 0.06, 0.3f, 0.6f, 41, footprint_m)
+                       : tiles(s, t, 0.5, 0.35, 0.05, 0.18f, 0.42f, 42, footprint_m);
+      break;
+    case SurfaceKind::kDetail:
+      v = tiles(s, t, 0.6, 0.6, 0.0, 0.25f, 0.6f, 51 + static_cast<std::uint64_t>(building + 1), footprint_m);
+      break;
+  }
+  v += 0.12f * grain_keep * grain;
+  return std::clamp(v, 0.0f, 0.72f);
+}
+
+}  // namespace twinslam::sim

@@ -1,0 +1,114 @@
+#include "twinslam/sim/world/twin.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <map>
+#include <set>
+#include <string>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/sim/world/random.hpp"
+
+namespace twinslam::sim {
+namespace {
+
+// Union-find over triangles: planar faces are sets of triangles that share vertices, have the same kind and parallel
+// normals (the world generator never shares a vertex between two faces, but a loaded mesh may).
+struct Faces {
+  std::vector<int> parent;
+  explicit Faces(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void unite(int a, int b) { parent[find(a)] = find(b); }
+};
+
+void validate(const City& world, const TwinConfig& c) {
+  if (!std::isfinite(c.noise_m) || c.noise_m < 0 || c.noise_m > 10)
+    throw InputError("twin.noise_m: must be in [0, 10] m, got " + std::to_string(c.noise_m));
+  const int max_missing = static_cast<int>(world.buildings.size()) - 1;
+  if (c.missing_buildings < 0 || c.missing_buildings > max_missing)
+    throw InputError("twin.missing_buildings: must be in [0, " + std::to_string(max_missing) + "], got " +
+                     std::to_string(c.missing_buildings));
+  const int max_added = static_cast<int>(world.empty_lots_W.size());
+  if (c.added_buildings < 0 || c.added_buildings > max_added)
+    throw InputError("twin.added_buildings: this city has " + std::to_string(max_added) +
+                     " empty lots, got " + std::to_string(c.added_buildings));
+  if (!c.offset_m.allFinite()) throw InputError("twin.offset_m: must be finite");
+}
+
+// Seeded Fisher-Yates shuffle with our own Rng (std::shuffle's use of the engine is library-specific).
+template <typename T>
+void shuffle(std::vector<T>* v, Rng* rng) {
+  for (int i = static_cast<int>(v->size()) - 1; i > 0; --i) std::swap((*v)[i], (*v)[rng->integer(i + 1)]);
+}
+
+}  // namespace
+
+Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed) {
+  validate(world, config);
+  Rng rng(hash64(seed ^ 0x7417ULL));  // a stream of its own: the twin must not change when the city code draws more
+  Twin twin;
+
+  std::vector<int> candidates;
+  for (const auto& b : world.buildings)
+    if (b.id != world.tallest_id) candidates.push_back(b.id);
+  shuffle(&candidates, &rng);
+  twin.missing_building_ids.assign(candidates.begin(), candidates.begin() + config.missing_buildings);
+  std::sort(twin.missing_building_ids.begin(), twin.missing_building_ids.end());
+  const std::set<int> missing(twin.missing_building_ids.begin(), twin.missing_building_ids.end());
+
+  const TriMesh& w = world.mesh;
+  std::vector<int> kept;
+  for (std::size_t i = 0; i < w.num_triangles(); ++i)
+    if (w.kind[i] != SurfaceKind::kDetail && !missing.count(w.building_id[i])) kept.push_back(static_cast<int>(i));
+
+  // Faces of the kept triangles.
+  Faces faces(kept.size());
+  std::vector<std::vector<int>> users(w.p_W.size());
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    for (int c = 0; c < 3; ++c) users[w.triangles[kept[k]][c]].push_back(static_cast<int>(k));
+  for (const auto& list : users)
+    for (std::size_t a = 1; a < list.size(); ++a) {
+      const int i = kept[list[0]], j = kept[list[a]];
+      if (w.kind[i] == w.kind[j] && w.normal(i).dot(w.normal(j)) > 0.999) faces.unite(list[0], list[a]);
+    }
+
+  // One offset per face along its normal; each face gets its own copy of its vertices.
+  std::vector<double> offset(kept.size(), std::nan(""));
+  std::map<std::pair<int, int>, int> vertex_of;
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const int root = faces.find(static_cast<int>(k));
+    if (std::isnan(offset[root])) offset[root] = config.noise_m * rng.normal();
+    const int tri = kept[k];
+    const Eigen::Vector3d n = w.normal(tri);
+    Eigen::Vector3i t;
+    for (int c = 0; c < 3; ++c) {
+      const int v = w.triangles[tri][c];
+      auto [it, inserted] = vertex_of.try_emplace({root, v}, static_cast<int>(twin.mesh.p_W.size()));
+      if (inserted) twin.mesh.p_W.push_back(w.p_W[v] + offset[root] * n + config.offset_m);
+      t[c] = it->second;
+    }
+    twin.mesh.triangles.push_back(t);
+    twin.mesh.building_id.push_back(w.building_id[tri]);
+    twin.mesh.kind.push_back(w.kind[tri]);
+  }
+
+  // Twin-only buildings: plain boxes in empty lots.
+  std::vector<int> lots(world.empty_lots_W.size());
+  std::iota(lots.begin(), lots.end(), 0);
+  shuffle(&lots, &rng);
+  for (int k = 0; k < config.added_buildings; ++k) {
+    const Eigen::Vector4d& lot = world.empty_lots_W[lots[k]];
+    const int id = static_cast<int>(world.buildings.size()) + k;
+    const double h = world.layout.floor_height_m * (3 + rng.integer(5));
+    const Eigen::Vector3d lo(lot[0] + 3, lot[1] + 3, 0), hi(lot[2] - 3, lot[3] - 3, h);
+    add_box(&twin.mesh, lo + config.offset_m, hi + config.offset_m, SurfaceKind::kFacade, SurfaceKind::kRoof, id);
+    twin.added_building_ids.push_back(id);
+  }
+  return twin;
+}
+
+}  // namespace twinslam::sim
