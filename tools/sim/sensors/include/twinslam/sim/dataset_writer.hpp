@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "twinslam/sim/clock.hpp"
 #include "twinslam/sim/flight_trajectory.hpp"
 #include "twinslam/sim/gnss_sim.hpp"
 #include "twinslam/sim/imu_sim.hpp"
