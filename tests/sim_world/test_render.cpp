@@ -9,6 +9,7 @@
 #include "sim_world_test_utils.hpp"
 #include "twinslam/sim/world/city.hpp"
 #include "twinslam/sim/world/renderer.hpp"
+#include "twinslam/sim/world/top_down.hpp"
 
 namespace twinslam::sim {
 namespace {
@@ -58,6 +59,14 @@ TEST(SimWorldRender, DifferentSeedsDiffer) {
 TriMesh single_box() {
   TriMesh m;
   add_box(&m, {-4, 25, -3}, {6, 35, 8}, SurfaceKind::kFacade, SurfaceKind::kRoof, 0, true);
+  return m;
+}
+
+// A 40 m x 40 m ground square with one 10 m box on it.
+TriMesh single_box_for_top_down() {
+  TriMesh m;
+  m.add_quad({-20, -20, 0}, {20, -20, 0}, {20, 20, 0}, {-20, 20, 0}, SurfaceKind::kGround, kNoBuilding);
+  add_box(&m, {-4, 5, 0}, {6, 15, 10}, SurfaceKind::kFacade, SurfaceKind::kRoof, 0);
   return m;
 }
 
@@ -140,6 +149,26 @@ TEST(SimWorldRender, CityFrameHasEnoughShiTomasiCorners) {
     cv::goodFeaturesToTrack(image, corners, 1000, 0.01, 8);
     EXPECT_GE(corners.size(), 150u);
   }
+}
+
+}  // namespace
+}  // namespace twinslam::sim
+
+namespace twinslam::sim {
+namespace {
+
+TEST(SimWorldRender, TopDownPreviewMapsWorldToPixels) {
+  const Renderer r(single_box_for_top_down());
+  const TopDownImage map = render_top_down(r, 0.5);
+  // Ground 40 x 40 m at 0.5 m/px; the 10 m tall box over [-4, 6] x [5, 15] is brighter than the ground.
+  ASSERT_EQ(map.image.cols, 80);
+  ASSERT_EQ(map.image.rows, 80);
+  const cv::Point2d on_box = map.pixel(1, 10), on_ground = map.pixel(-15, -15);
+  EXPECT_NEAR(on_box.x, 41.5, 1e-9);   // (1 - (-20)) / 0.5 - 0.5
+  EXPECT_NEAR(on_box.y, 19.5, 1e-9);   // (20 - 10) / 0.5 - 0.5
+  const int box = map.image.at<std::uint8_t>(static_cast<int>(on_box.y), static_cast<int>(on_box.x));
+  const int ground = map.image.at<std::uint8_t>(static_cast<int>(on_ground.y), static_cast<int>(on_ground.x));
+  EXPECT_GT(box, ground + 40);
 }
 
 }  // namespace

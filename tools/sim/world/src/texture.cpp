@@ -8,18 +8,24 @@
 namespace twinslam::sim {
 namespace {
 
-// Hash of an integer lattice cell to [0, 1).
+// Hash of an integer lattice cell to [0, 1): one mix of the packed (i, j, salt) key; this runs several times per
+// pixel, so it is kept to a single hash64.
 float cell(std::int64_t i, std::int64_t j, std::uint64_t salt) {
-  const std::uint64_t h = hash64(salt ^ hash64(static_cast<std::uint64_t>(i) * 0x9E3779B1ULL ^
-                                               hash64(static_cast<std::uint64_t>(j))));
-  return static_cast<float>(h >> 40) * 0x1.0p-24f;
+  const std::uint64_t key = (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL) ^
+                            (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4FULL) ^ (salt * 0x165667B19E3779F9ULL);
+  return static_cast<float>(hash64(key) >> 40) * 0x1.0p-24f;
+}
+
+// floor() as an integer without a libm call (the x86-64 baseline has no SSE4.1 round instruction).
+inline std::int64_t ifloor(double x) {
+  const auto i = static_cast<std::int64_t>(x);
+  return i - (x < static_cast<double>(i));
 }
 
 // Bilinear value noise in [0, 1) with smoothstep weights.
 float value_noise(double s, double t, std::uint64_t salt) {
-  const double fs = std::floor(s), ft = std::floor(t);
-  const auto i = static_cast<std::int64_t>(fs), j = static_cast<std::int64_t>(ft);
-  double a = s - fs, b = t - ft;
+  const std::int64_t i = ifloor(s), j = ifloor(t);
+  double a = s - static_cast<double>(i), b = t - static_cast<double>(j);
   a = a * a * (3 - 2 * a);
   b = b * b * (3 - 2 * b);
   const float v00 = cell(i, j, salt), v10 = cell(i + 1, j, salt), v01 = cell(i, j + 1, salt),
@@ -37,8 +43,9 @@ float keep(double period_m, double footprint_m) {
 float tiles(double s, double t, double size_s, double size_t, double joint, float lo, float hi, std::uint64_t salt,
             double footprint_m) {
   const double cs = s / size_s, ct = t / size_t;
-  const double fs = cs - std::floor(cs), ft = ct - std::floor(ct);
-  float v = lo + (hi - lo) * cell(static_cast<std::int64_t>(std::floor(cs)), static_cast<std::int64_t>(std::floor(ct)), salt);
+  const std::int64_t is = ifloor(cs), it = ifloor(ct);
+  const double fs = cs - static_cast<double>(is), ft = ct - static_cast<double>(it);
+  float v = lo + (hi - lo) * cell(is, it, salt);
   if (fs < joint / size_s || ft < joint / size_t) v *= 0.55f;
   const float mean = 0.5f * (lo + hi) * 0.95f;
   return mean + keep(std::min(size_s, size_t), footprint_m) * (v - mean);
@@ -67,10 +74,10 @@ float albedo(const Eigen::Vector3d& p, const Eigen::Vector3d& n, SurfaceKind kin
       const std::uint64_t b = static_cast<std::uint64_t>(building + 1);
       const float wall = 0.32f + 0.3f * cell(building, 0, 31);
       const double cs = s / 3.0, ct = t / 3.0;  // one window per 3 m bay and 3 m storey
-      const double fs = cs - std::floor(cs), ft = ct - std::floor(ct);
+      const std::int64_t is = ifloor(cs), it = ifloor(ct);
+      const double fs = cs - static_cast<double>(is), ft = ct - static_cast<double>(it);
       const bool window = fs > 0.22 && fs < 0.78 && ft > 0.3 && ft < 0.82;
-      const float glass = 0.05f + 0.3f * cell(static_cast<std::int64_t>(std::floor(cs)),
-                                               static_cast<std::int64_t>(std::floor(ct)), 32 + b);
+      const float glass = 0.05f + 0.3f * cell(is, it, 32 + b);
       const float mean = 0.71f * wall + 0.29f * 0.2f;
       v = mean + keep(3.0, footprint_m) * ((window ? glass : wall) - mean);
       break;
