@@ -70,18 +70,10 @@ double cruise_length(const TrajectoryConfig& cfg) {
 }
 
 FlightTrajectory make_loops(const Scenario& sc, const SceneHints& hints) {
-  const TrajectoryConfig& cfg = sc.trajectory;
-  const double length = cruise_length(cfg);
-  // Radius for `loops` loops at the cruise length, kept 12-30 m outside the building's half-diagonal.
-  const double radius = std::clamp(length / (2 * M_PI * cfg.loops), hints.tall_building_radius_m + 12.0,
-                                   hints.tall_building_radius_m + 30.0);
-  const double turns = length / (2 * M_PI * radius);
-  const double range = cfg.altitude_m[1] - cfg.altitude_m[0];
-  const double rise = std::min(cfg.loop_rise_m * turns, range);
-  const double z0 = hints.ground_z_m + cfg.altitude_m[0] + 0.5 * (range - rise);
+  const LoopsGeometry g = loops_geometry(sc, hints);
   PlanarPath path;  // counter-clockwise from the south side: the building is on the left
-  path.add_arc(hints.tall_building_center_W, radius, -M_PI / 2, 2 * M_PI * turns, z0, z0 + rise);
-  return sample_path(path, length, kLoopHeadingOffset, cfg, sc.name);
+  path.add_arc(g.center_W, g.radius_m, -M_PI / 2, 2 * M_PI * g.turns, g.z_start_m, g.z_start_m + g.rise_m);
+  return sample_path(path, cruise_length(sc.trajectory), kLoopHeadingOffset, sc.trajectory, sc.name);
 }
 
 FlightTrajectory make_survey(const Scenario& sc, const SceneHints& hints) {
@@ -112,6 +104,21 @@ FlightTrajectory make_waypoints(const Scenario& sc) {
 }
 
 }  // namespace
+
+LoopsGeometry loops_geometry(const Scenario& sc, const SceneHints& hints) {
+  const TrajectoryConfig& cfg = sc.trajectory;
+  const double length = cruise_length(cfg);
+  LoopsGeometry g;
+  g.center_W = hints.tall_building_center_W;
+  // Radius for `loops` loops at the cruise length, kept 12-30 m outside the building's half-diagonal.
+  g.radius_m = std::clamp(length / (2 * M_PI * cfg.loops), hints.tall_building_radius_m + 12.0,
+                          hints.tall_building_radius_m + 30.0);
+  g.turns = length / (2 * M_PI * g.radius_m);
+  const double range = cfg.altitude_m[1] - cfg.altitude_m[0];
+  g.rise_m = std::min(cfg.loop_rise_m * g.turns, range);
+  g.z_start_m = hints.ground_z_m + cfg.altitude_m[0] + 0.5 * (range - g.rise_m);
+  return g;
+}
 
 FlightTrajectory make_flight_trajectory(const Scenario& scenario, const SceneHints& hints) {
   const std::string& type = scenario.trajectory.type;

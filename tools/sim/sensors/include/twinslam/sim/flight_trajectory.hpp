@@ -54,4 +54,15 @@ class FlightTrajectory {
 // flight_limits() (e.g. waypoints too far for duration_s at speed_mps).
 FlightTrajectory make_flight_trajectory(const Scenario& scenario, const SceneHints& hints);
 
+// Where a `loops` flight goes, so the world can keep that ring free of other buildings: counter-clockwise circles
+// around hints.tall_building_center_W starting south of it, from altitude z_start_m rising by rise_m in total.
+struct LoopsGeometry {
+  Eigen::Vector2d center_W = Eigen::Vector2d::Zero();  // [m, E N]
+  double radius_m = 0;     // hints.tall_building_radius_m + 12..30 m, chosen for trajectory.loops loops
+  double turns = 0;        // loops actually flown (differs from trajectory.loops when the radius is clamped)
+  double z_start_m = 0;    // [m, W up]
+  double rise_m = 0;       // [m]
+};
+LoopsGeometry loops_geometry(const Scenario& scenario, const SceneHints& hints);
+
 }  // namespace twinslam::sim
