@@ -90,6 +90,22 @@ TEST(SimWorldTwin, SurfaceDistanceIsAboutNoise) {
   EXPECT_GT(noisy.median_m, 0.03);
 }
 
+TEST(SimWorldTwin, SurfaceSamplesAreUniformByArea) {
+  // Two unit-height quads, one 3x as large: about 3/4 of the samples land on it, all on their triangle's plane.
+  TriMesh m;
+  m.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, SurfaceKind::kGround, kNoBuilding);
+  m.add_quad({0, 0, 5}, {3, 0, 5}, {3, 1, 5}, {0, 1, 5}, SurfaceKind::kRoof, kNoBuilding);
+  const auto samples = sample_surface(m, 8000, 3);
+  int on_large = 0;
+  for (const auto& s : samples) {
+    on_large += s.p_W.z() > 2.5;
+    ASSERT_NEAR(s.p_W.z(), s.triangle < 2 ? 0.0 : 5.0, 1e-12);
+    ASSERT_TRUE(s.p_W.x() >= -1e-12 && s.p_W.x() <= (s.triangle < 2 ? 1 : 3) + 1e-12);
+  }
+  EXPECT_NEAR(on_large / 8000.0, 0.75, 0.02);
+  EXPECT_THROW(sample_surface(TriMesh{}, 10, 1), InputError);
+}
+
 TEST(SimWorldTwin, OutOfRangeValuesNameTheKey) {
   TwinConfig config;
   config.noise_m = -1;

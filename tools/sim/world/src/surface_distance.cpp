@@ -9,27 +9,33 @@
 
 namespace twinslam::sim {
 
+std::vector<SurfaceSample> sample_surface(const TriMesh& mesh, int samples, std::uint64_t seed) {
+  if (samples < 1) throw InputError("sample_surface: need at least one sample");
+  std::vector<double> cumulative(mesh.num_triangles());
+  double total = 0;
+  for (std::size_t i = 0; i < mesh.num_triangles(); ++i) cumulative[i] = total += mesh.area(i);
+  if (!(total > 0)) throw InputError("sample_surface: the mesh has no area");
+  Rng rng(seed);
+  std::vector<SurfaceSample> out(samples);
+  for (auto& s : out) {
+    // Triangle with probability proportional to its area, then a uniform point in it (sqrt warp of barycentrics).
+    const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), rng.uniform() * total);
+    s.triangle = static_cast<std::uint32_t>(std::min<std::size_t>(it - cumulative.begin(), cumulative.size() - 1));
+    const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
+    const auto& t = mesh.triangles[s.triangle];
+    s.p_W = (1 - r1) * mesh.p_W[t[0]] + r1 * (1 - r2) * mesh.p_W[t[1]] + r1 * r2 * mesh.p_W[t[2]];
+  }
+  return out;
+}
+
 SurfaceDistance surface_distance(const TriMesh& sampled, const TriMesh& reference, int samples, std::uint64_t seed,
                                  double max_search_m) {
-  if (samples < 1) throw InputError("surface_distance: need at least one sample");
-  std::vector<double> cumulative(sampled.num_triangles());
-  double total = 0;
-  for (std::size_t i = 0; i < sampled.num_triangles(); ++i) cumulative[i] = total += sampled.area(i);
-  if (!(total > 0)) throw InputError("surface_distance: the sampled mesh has no area");
-
+  const std::vector<SurfaceSample> points = sample_surface(sampled, samples, seed);
   const EmbreeScene scene(reference);
-  Rng rng(seed);
   std::vector<double> d(samples);
   double sum_sq = 0;
   for (int s = 0; s < samples; ++s) {
-    // Triangle with probability proportional to its area, then a uniform point in it (sqrt warp of barycentrics).
-    const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), rng.uniform() * total);
-    const std::size_t tri = std::min<std::size_t>(it - cumulative.begin(), cumulative.size() - 1);
-    const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
-    const auto& t = sampled.triangles[tri];
-    const Eigen::Vector3d p = (1 - r1) * sampled.p_W[t[0]] + r1 * (1 - r2) * sampled.p_W[t[1]] +
-                              r1 * r2 * sampled.p_W[t[2]];
-    d[s] = std::min(scene.closest_distance(p, max_search_m), max_search_m);
+    d[s] = std::min(scene.closest_distance(points[s].p_W, max_search_m), max_search_m);
     sum_sq += d[s] * d[s];
   }
   SurfaceDistance out;

@@ -3,10 +3,20 @@
 // distance to the nearest point of `reference` (the world) by an Embree closest-point query.
 // Not symmetric: world details the twin lacks do not count, twin-only (added) buildings do.
 #include <cstdint>
+#include <vector>
 
 #include "twinslam/sim/world/mesh.hpp"
 
 namespace twinslam::sim {
+
+struct SurfaceSample {
+  Eigen::Vector3d p_W;        // [m, W]
+  std::uint32_t triangle = 0; // index into TriMesh::triangles
+};
+
+// Points uniformly distributed over the mesh's area (triangle by area, then a uniform point in it), seeded.
+// Also a source of landmarks for ideal feature tracks. Throws InputError if the mesh has no area or samples < 1.
+std::vector<SurfaceSample> sample_surface(const TriMesh& mesh, int samples, std::uint64_t seed);
 
 struct SurfaceDistance {
   int samples = 0;
