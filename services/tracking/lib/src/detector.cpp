@@ -48,7 +48,8 @@ void mark_taken(cv::Mat1b& taken, const cv::Point2f& px, double min_distance_px)
 }
 
 std::vector<cv::Point2f> detect_bucketed(const cv::Mat& image, const std::vector<cv::Point2f>& existing,
-                                         cv::Mat1b& taken, int wanted, const FrontendConfig& config) {
+                                         cv::Mat1b& taken, int wanted, const FrontendConfig& config,
+                                         std::vector<int>* barren) {
   std::vector<cv::Point2f> added;
   if (wanted <= 0) return added;
   const int cols = config.grid_cols, rows = config.grid_rows;
@@ -56,6 +57,7 @@ std::vector<cv::Point2f> detect_bucketed(const cv::Mat& image, const std::vector
                        image.rows - 2 * config.border_px);
   if (inner.width <= 0 || inner.height <= 0) return added;
   const int share = (config.max_features + cols * rows - 1) / (cols * rows);
+  barren->resize(cols * rows, 0);
 
   std::vector<int> count(cols * rows, 0);
   auto bucket_of = [&](const cv::Point2f& p) {
@@ -74,10 +76,16 @@ std::vector<cv::Point2f> detect_bucketed(const cv::Mat& image, const std::vector
   for (int b : order) {
     if (static_cast<int>(added.size()) >= wanted) break;
     if (count[b] >= share) continue;
+    if ((*barren)[b] > 0) {
+      --(*barren)[b];
+      continue;
+    }
     const int c = b % cols, r = b / cols;
     const int x0 = inner.x + c * inner.width / cols, x1 = inner.x + (c + 1) * inner.width / cols;
     const int y0 = inner.y + r * inner.height / rows, y1 = inner.y + (r + 1) * inner.height / rows;
-    for (const Corner& corner : bucket_corners(image, cv::Rect(x0, y0, x1 - x0, y1 - y0), config)) {
+    const std::vector<Corner> corners = bucket_corners(image, cv::Rect(x0, y0, x1 - x0, y1 - y0), config);
+    if (corners.empty()) (*barren)[b] = kBarrenSkips;
+    for (const Corner& corner : corners) {
       if (count[b] < share && static_cast<int>(added.size()) < wanted) {
         if (!is_free(taken, corner.px)) continue;
         added.push_back(corner.px);

@@ -22,7 +22,12 @@ inline bool is_free(const cv::Mat1b& taken, const cv::Point2f& px) {
 // ceil(max_features / buckets) (counting `existing` points in it), then leftover corners of any bucket fill the rest,
 // strongest first. Scores are computed only in buckets that lack features. A corner is taken only where `taken` is
 // free, and marks its own disc there. Only corners at least config.border_px from the edge are considered.
+// barren (grid_cols * grid_rows entries, kept by the caller between frames): a bucket without a single corner above
+// the threshold (sky, a white wall) is not scored again for the next kBarrenSkips times it is visited, so textureless
+// areas do not cost a full scoring every frame.
+inline constexpr int kBarrenSkips = 4;
 std::vector<cv::Point2f> detect_bucketed(const cv::Mat& image, const std::vector<cv::Point2f>& existing,
-                                         cv::Mat1b& taken, int wanted, const FrontendConfig& config);
+                                         cv::Mat1b& taken, int wanted, const FrontendConfig& config,
+                                         std::vector<int>* barren);
 
 }  // namespace twinslam::tracking

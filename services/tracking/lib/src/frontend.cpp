@@ -38,6 +38,7 @@ Frontend::Frontend(std::shared_ptr<const CameraModel> camera, const FrontendConf
 
 void Frontend::reset() {
   tracks_.clear();
+  barren_.clear();
   prev_pyramid_.clear();
   has_prev_ = false;
 }
@@ -205,7 +206,7 @@ void Frontend::prune_and_detect(const cv::Mat& image, FrameResult* result) {
   }
   result->stats.tracked = static_cast<int>(kept.size());
   const int wanted = config_.max_features - static_cast<int>(kept.size());
-  for (const cv::Point2f& px : detect_bucketed(image, existing, taken, wanted, config_)) {
+  for (const cv::Point2f& px : detect_bucketed(image, existing, taken, wanted, config_, &barren_)) {
     Track t{next_id_, px, Eigen::Vector3d::UnitZ(), 1};
     if (!camera_->unproject(Eigen::Vector2d(px.x, px.y), &t.f_C)) continue;  // outside the lens model's domain
     ++next_id_;

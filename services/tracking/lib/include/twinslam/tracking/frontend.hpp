@@ -96,6 +96,7 @@ class Frontend {
   cv::Mat clahe_buffer_;
   std::vector<cv::Mat> prev_pyramid_, curr_pyramid_;
   std::vector<Track> tracks_;
+  std::vector<int> barren_;  // per grid bucket: detection visits left to skip (see detector.hpp)
   std::int64_t prev_stamp_ns_ = 0;
   bool has_prev_ = false;
   std::uint64_t next_id_ = 1;

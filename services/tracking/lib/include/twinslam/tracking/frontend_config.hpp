@@ -12,15 +12,15 @@ struct FrontendConfig {
   int grid_rows = 5;                // buckets down the image
   double min_distance_px = 20.0;    // no new (or kept) feature closer than this to another one [px]
   double quality_level = 0.01;      // Shi-Tomasi: keep corners with min eigenvalue >= quality * best of the bucket
-  double min_eigenvalue = 5e-4;     // absolute floor on the min eigenvalue (OpenCV's normalized units; 0 = none),
+  double min_eigenvalue = 2e-4;     // absolute floor on the min eigenvalue (OpenCV's normalized units; 0 = none),
                                     // so flat buckets (sky, white walls) do not get noise corners
   int border_px = 10;               // no features this close to the image edge [px]
 
   // --- Pyramidal KLT (Bouguet's pyramidal Lucas-Kanade, as in cv::calcOpticalFlowPyrLK) ---
-  int klt_window_px = 21;           // square window side [px], odd
+  int klt_window_px = 15;           // square window side [px], odd
   int klt_levels = 3;               // pyramid levels above the full image (0 = no pyramid)
-  int klt_max_iterations = 30;      // per level
-  double klt_epsilon_px = 0.01;     // stop when the update is below this [px]
+  int klt_max_iterations = 20;      // per level
+  double klt_epsilon_px = 0.03;     // stop when the update is below this [px]
   double fb_threshold_px = 0.5;     // forward-backward check: max |x_prev - backward(forward(x_prev))| [px]
 
   // --- RANSAC on bearings (see ransac.hpp) ---
