@@ -1,0 +1,98 @@
+#pragma once
+// Marginalization of sliding-window variables into a prior factor (the Schur complement of the linearized factors),
+// as VINS-Mono's MarginalizationFactor (Qin et al., TRO 2018, Sec. VI-D) and OKVIS (Leutenegger et al., IJRR 2015,
+// Sec. IV-C).
+//
+// Given the factors connected to the variables x_m to remove, linearized at the current values x0:
+//   sum_f |r_f(x0 [+] dx)|^2 ~= |r(x0) + J dx|^2,   H = J^T J,   g = J^T r,
+// ordered [x_m, x_r] (x_r: the other blocks those factors touch), the Gaussian over x_r after eliminating x_m is
+//   H* = H_rr - H_rm H_mm^-1 H_mr,   g* = g_r - H_rm H_mm^-1 g_m          (Sibley et al., JFR 2010, eq. 10; OKVIS eq. 20)
+// and the prior factor is r_p(x_r) = r0 + J0 (x_r [-] x_r0) with J0^T J0 = H*, J0^T r0 = g*, obtained from the
+// eigen-decomposition H* = V S V^T: J0 = S^1/2 V^T, r0 = S^-1/2 V^T g* (as VINS-Mono), keeping eigenvalues above
+// MarginalizationConfig::min_eigenvalue (unconstrained directions, e.g. the gauge, get no information).
+//
+// Manifolds: Jacobians are taken in a tangent space, the linearization point is kept (first-estimate Jacobians):
+//  - pose blocks [p_L, q_LB xyzw] (kPoseSize): dx = [p - p0, Log(q0^-1 q)], the right (body-frame) perturbation of
+//    imu_state.hpp, so the factors' ambient Jacobians map to it exactly with the 4x3 lift dq/dtheta;
+//  - every other block is Euclidean (speed_bias, inverse depth, ...).
+// Robust losses of the marginalized factors are applied by Triggs' correction (Triggs et al., "Bundle Adjustment - A
+// Modern Synthesis", 2000, Sec. 4.3), the same as ceres::Corrector.
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include <ceres/cost_function.h>
+#include <ceres/loss_function.h>
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace twinslam::estimator {
+
+enum class BlockKind { kEuclidean, kPose };
+
+struct MarginalizationConfig {
+  // Eigenvalues of H_mm and H* at or below this are treated as zero [information units of the whitened residuals];
+  // VINS-Mono uses the same 1e-8.
+  double min_eigenvalue = 1e-8;
+  void validate() const;  // throws twinslam::InputError
+};
+
+// d(q)/d(dtheta) at dtheta = 0 for q (x) Exp(dtheta), 4x3 in memory order x, y, z, w: maps the pose factors' ambient
+// quaternion Jacobians to the right-perturbation tangent (geometry::right_perturbation_jacobian(q) times it is I).
+Eigen::Matrix<double, 4, 3> quaternion_right_lift(const Eigen::Quaterniond& q);
+
+// The prior on the kept blocks. Add it to the problem with its parameter_blocks(); it does not own them.
+class MarginalizationPrior final : public ceres::CostFunction {
+ public:
+  MarginalizationPrior(std::vector<double*> blocks, std::vector<BlockKind> kinds, std::vector<int> sizes,
+                       Eigen::MatrixXd J0, Eigen::VectorXd r0);
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+  const std::vector<double*>& parameter_blocks() const { return blocks_; }
+  // Information and gradient in the stacked tangent coordinates of parameter_blocks(), at the linearization point.
+  Eigen::MatrixXd hessian() const { return J0_.transpose() * J0_; }
+  Eigen::VectorXd gradient() const { return J0_.transpose() * r0_; }
+  const std::vector<Eigen::VectorXd>& linearization_point() const { return x0_; }
+  int tangent_size() const { return static_cast<int>(J0_.cols()); }
+
+ private:
+  std::vector<double*> blocks_;
+  std::vector<BlockKind> kinds_;
+  std::vector<int> offsets_;  // tangent offset of each block
+  std::vector<Eigen::VectorXd> x0_;
+  Eigen::MatrixXd J0_;
+  Eigen::VectorXd r0_;
+};
+
+// Collects the factors connected to the blocks to marginalize and builds the prior.
+// Usage per window slide: add every factor touching a marginalized block (IMU factors, reprojection factors of the
+// landmarks being dropped, the previous prior), mark the blocks, call marginalize() BEFORE removing those factors from
+// the ceres::Problem (they are evaluated there; pointers need not outlive the call), then remove the factors and
+// blocks and add the new prior.
+class Marginalizer {
+ public:
+  explicit Marginalizer(const MarginalizationConfig& config = {});
+
+  void add_factor(const ceres::CostFunction* cost, const ceres::LossFunction* loss, std::vector<double*> blocks);
+  void marginalize_block(double* block);
+  // Kinds default from the size (kPoseSize -> kPose, otherwise kEuclidean); override here.
+  void set_block_kind(double* block, BlockKind kind);
+
+  // Evaluates the factors at the current block values and returns the prior on the remaining blocks. Throws
+  // std::logic_error if a marked block is in no factor or no block remains, std::runtime_error if a factor fails.
+  std::unique_ptr<MarginalizationPrior> marginalize() const;
+
+ private:
+  struct Factor {
+    const ceres::CostFunction* cost;
+    const ceres::LossFunction* loss;
+    std::vector<double*> blocks;
+  };
+  MarginalizationConfig config_;
+  std::vector<Factor> factors_;
+  std::vector<double*> marginalized_;
+  std::unordered_map<double*, BlockKind> kinds_;
+};
+
+}  // namespace twinslam::estimator

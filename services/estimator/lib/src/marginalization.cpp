@@ -1,0 +1,193 @@
+// Marginalizer: linearize the connected factors, Schur-complement the marginalized blocks, factor the result.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include <Eigen/Eigenvalues>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/estimator/imu_state.hpp"
+#include "twinslam/estimator/marginalization.hpp"
+
+namespace twinslam::estimator {
+
+void MarginalizationConfig::validate() const {
+  if (!(min_eigenvalue > 0.0) || !std::isfinite(min_eigenvalue)) {
+    throw InputError("MarginalizationConfig: min_eigenvalue must be > 0");
+  }
+}
+
+Marginalizer::Marginalizer(const MarginalizationConfig& config) : config_(config) { config_.validate(); }
+
+void Marginalizer::add_factor(const ceres::CostFunction* cost, const ceres::LossFunction* loss,
+                              std::vector<double*> blocks) {
+  if (cost == nullptr || blocks.size() != cost->parameter_block_sizes().size()) {
+    throw std::logic_error("Marginalizer::add_factor: null cost or wrong number of blocks");
+  }
+  factors_.push_back({cost, loss, std::move(blocks)});
+}
+
+void Marginalizer::marginalize_block(double* block) {
+  if (std::find(marginalized_.begin(), marginalized_.end(), block) == marginalized_.end()) {
+    marginalized_.push_back(block);
+  }
+}
+
+void Marginalizer::set_block_kind(double* block, BlockKind kind) { kinds_[block] = kind; }
+
+namespace {
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+struct BlockInfo {
+  int size = 0;      // ambient
+  int tangent = 0;   // tangent
+  int offset = -1;   // in the stacked tangent vector [x_m, x_r]
+  BlockKind kind = BlockKind::kEuclidean;
+  bool marginalized = false;
+};
+
+// Triggs' correction of a robustified residual block (see the header): afterwards |r|^2 / 2 and J^T J, J^T r match the
+// loss to second order (first order where rho'' <= 0, as ceres::Corrector).
+void apply_loss(const ceres::LossFunction* loss, Eigen::VectorXd& r, Eigen::MatrixXd& J) {
+  if (loss == nullptr) return;
+  const double sq_norm = r.squaredNorm();
+  double rho[3];
+  loss->Evaluate(sq_norm, rho);
+  const double sqrt_rho1 = std::sqrt(std::max(rho[1], 0.0));
+  double alpha = 0.0;
+  if (sq_norm > 0.0 && rho[2] > 0.0) alpha = 1.0 - std::sqrt(1.0 + 2.0 * sq_norm * rho[2] / rho[1]);
+  if (sq_norm > 0.0 && alpha != 0.0) J -= (alpha / sq_norm) * r * (r.transpose() * J);
+  J *= sqrt_rho1;
+  r *= sqrt_rho1 / (1.0 - alpha);
+}
+
+// Pseudo-inverse of a symmetric positive semi-definite matrix, zeroing eigenvalues <= eps.
+Eigen::MatrixXd psd_pseudo_inverse(const Eigen::MatrixXd& A, double eps) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A);
+  const Eigen::VectorXd inv = es.eigenvalues().unaryExpr([eps](double l) { return l > eps ? 1.0 / l : 0.0; });
+  return es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
+}
+
+}  // namespace
+
+std::unique_ptr<MarginalizationPrior> Marginalizer::marginalize() const {
+  // Block layout: marginalized blocks first, then the kept blocks in order of first appearance.
+  std::unordered_map<double*, BlockInfo> info;
+  std::vector<double*> kept;
+  for (const auto& f : factors_) {
+    for (std::size_t k = 0; k < f.blocks.size(); ++k) {
+      double* b = f.blocks[k];
+      const int size = f.cost->parameter_block_sizes()[k];
+      auto [it, inserted] = info.try_emplace(b);
+      if (!inserted) {
+        if (it->second.size != size) throw std::logic_error("Marginalizer: one block with two sizes");
+        continue;
+      }
+      BlockInfo& bi = it->second;
+      bi.size = size;
+      const auto kind = kinds_.find(b);
+      bi.kind = kind != kinds_.end() ? kind->second : (size == kPoseSize ? BlockKind::kPose : BlockKind::kEuclidean);
+      bi.tangent = bi.kind == BlockKind::kPose ? kPoseTangentSize : size;
+      bi.marginalized = std::find(marginalized_.begin(), marginalized_.end(), b) != marginalized_.end();
+      if (!bi.marginalized) kept.push_back(b);
+    }
+  }
+  int m = 0;
+  for (double* b : marginalized_) {
+    const auto it = info.find(b);
+    if (it == info.end()) throw std::logic_error("Marginalizer: a block to marginalize is in no factor");
+    it->second.offset = m;
+    m += it->second.tangent;
+  }
+  if (kept.empty()) throw std::logic_error("Marginalizer: no block remains to carry the prior");
+  int total = m;
+  for (double* b : kept) {
+    info[b].offset = total;
+    total += info[b].tangent;
+  }
+
+  // H = sum J^T J and g = sum J^T r in the stacked tangent coordinates.
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(total, total);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(total);
+  for (const auto& f : factors_) {
+    const int rows = f.cost->num_residuals();
+    const std::size_t nb = f.blocks.size();
+    std::vector<RowMajor> ambient(nb);
+    std::vector<double*> jac_ptrs(nb);
+    for (std::size_t k = 0; k < nb; ++k) {
+      ambient[k].resize(rows, info[f.blocks[k]].size);
+      jac_ptrs[k] = ambient[k].data();
+    }
+    Eigen::VectorXd r(rows);
+    if (!f.cost->Evaluate(f.blocks.data(), r.data(), jac_ptrs.data()) || !r.allFinite()) {
+      throw std::runtime_error("Marginalizer: a factor failed to evaluate at the linearization point");
+    }
+    // Ambient -> tangent Jacobians, stacked into one matrix over the blocks of this factor.
+    int width = 0;
+    for (double* b : f.blocks) width += info[b].tangent;
+    Eigen::MatrixXd J(rows, width);
+    int col = 0;
+    for (std::size_t k = 0; k < nb; ++k) {
+      const BlockInfo& bi = info[f.blocks[k]];
+      if (bi.kind == BlockKind::kPose) {
+        const Eigen::Quaterniond q(Eigen::Map<const Eigen::Quaterniond>(f.blocks[k] + 3));
+        J.middleCols(col, 3) = ambient[k].leftCols(3);
+        J.middleCols(col + 3, 3) = ambient[k].rightCols(4) * quaternion_right_lift(q);
+      } else {
+        J.middleCols(col, bi.size) = ambient[k];
+      }
+      col += bi.tangent;
+    }
+    apply_loss(f.loss, r, J);
+    // Scatter J^T J and J^T r into H and g by block (a block may appear once per factor).
+    int ci = 0;
+    for (std::size_t a = 0; a < nb; ++a) {
+      const BlockInfo& A = info[f.blocks[a]];
+      g.segment(A.offset, A.tangent) += J.middleCols(ci, A.tangent).transpose() * r;
+      int cj = 0;
+      for (std::size_t b = 0; b < nb; ++b) {
+        const BlockInfo& B = info[f.blocks[b]];
+        H.block(A.offset, B.offset, A.tangent, B.tangent) +=
+            J.middleCols(ci, A.tangent).transpose() * J.middleCols(cj, B.tangent);
+        cj += B.tangent;
+      }
+      ci += A.tangent;
+    }
+  }
+
+  // Schur complement (header), then H* = V S V^T -> J0 = S^1/2 V^T, r0 = S^-1/2 V^T g*.
+  const int n = total - m;
+  const Eigen::MatrixXd Hmm_inv = psd_pseudo_inverse(0.5 * (H.topLeftCorner(m, m) + H.topLeftCorner(m, m).transpose()),
+                                                     config_.min_eigenvalue);
+  const Eigen::MatrixXd Hrm = H.bottomLeftCorner(n, m);
+  Eigen::MatrixXd Hs = H.bottomRightCorner(n, n) - Hrm * Hmm_inv * Hrm.transpose();
+  Hs = 0.5 * (Hs + Hs.transpose());
+  const Eigen::VectorXd gs = g.tail(n) - Hrm * (Hmm_inv * g.head(m));
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Hs);
+  std::vector<int> keep;
+  for (int i = 0; i < n; ++i) {
+    if (es.eigenvalues()(i) > config_.min_eigenvalue) keep.push_back(i);
+  }
+  const int rank = static_cast<int>(keep.size());
+  Eigen::MatrixXd J0(rank, n);
+  Eigen::VectorXd r0(rank);
+  for (int k = 0; k < rank; ++k) {
+    const double s = std::sqrt(es.eigenvalues()(keep[k]));
+    const auto v = es.eigenvectors().col(keep[k]);
+    J0.row(k) = s * v.transpose();
+    r0(k) = v.dot(gs) / s;
+  }
+
+  std::vector<BlockKind> kinds;
+  std::vector<int> sizes;
+  for (double* b : kept) {
+    kinds.push_back(info[b].kind);
+    sizes.push_back(info[b].size);
+  }
+  return std::make_unique<MarginalizationPrior>(kept, std::move(kinds), std::move(sizes), std::move(J0),
+                                                std::move(r0));
+}
+
+}  // namespace twinslam::estimator
