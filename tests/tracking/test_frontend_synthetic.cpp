@@ -64,6 +64,23 @@ TEST(FrontendSynthetic, SubpixelShiftIsMeasuredWithinATenthOfAPixel) {
   EXPECT_GE(checked, 140);  // almost all of the 180 survive a 4 px shift, a few are near the edge
 }
 
+TEST(FrontendSynthetic, ClaheKeepsTracksThroughAnExposureDrop) {
+  // The shifted frame is also 45 % darker with less contrast, as when auto-exposure reacts to a bright window.
+  const cv::Mat img0 = texture(640, 400, 9);
+  const cv::Mat A = (cv::Mat_<double>(2, 3) << 1, 0, 1.6, 0, 1, 0.8);
+  cv::Mat img1;
+  cv::warpAffine(img0, img1, A, img0.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT_101);
+  img1.convertTo(img1, CV_8U, 0.55, 10.0);
+  FrontendConfig config;
+  config.clahe = true;
+  Frontend frontend(pinhole_640x400(), config);
+  const FrameResult r0 = frontend.track(0, img0);
+  const FrameResult r1 = frontend.track(50'000'000, img1);
+  ASSERT_EQ(static_cast<int>(r0.features.size()), config.max_features);
+  EXPECT_GE(r1.stats.tracked, 150) << "lost: klt " << r1.stats.lost_klt << " fb " << r1.stats.lost_fb << " ransac "
+                                   << r1.stats.lost_ransac;
+}
+
 struct RotationRun {
   int tracked = 0;
   int trackable = 0;             // features whose true position in frame 1 lies inside the image
