@@ -140,6 +140,19 @@ TEST(SimWorldRender, RaycastAndVisibilityHaveKnownAnswers) {
   EXPECT_TRUE(r.visible({1, 20, 1}, c_W));    // free space in front
 }
 
+TEST(SimWorldRender, EmptyWorldIsAllSky) {
+  RenderConfig config;
+  config.noise_sigma = 0;
+  const Renderer r(TriMesh{}, config);
+  const auto cam = pinhole_90();
+  const cv::Mat image = r.render(look_at({0, 0, 0}, {0, 10, 8}), *cam, 1);  // 39 deg up: all rays above the horizon
+  double lo, hi;
+  cv::minMaxLoc(image, &lo, &hi);
+  EXPECT_GE(lo, 205);
+  EXPECT_LE(hi, 240);
+  EXPECT_FALSE(r.raycast({0, 0, 0}, {0, 0, -1}).has_value());
+}
+
 TEST(SimWorldRender, CityFrameHasEnoughShiTomasiCorners) {
   const Renderer r(city().mesh);
   const auto cam = fisheye_120();

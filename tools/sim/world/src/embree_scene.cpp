@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <embree3/rtcore.h>
 
@@ -18,19 +19,26 @@ EmbreeScene::EmbreeScene(const TriMesh& mesh) : mesh_(mesh), impl_(std::make_uni
   if (!impl_->device) throw std::runtime_error("Embree: cannot create a device");
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);  // static scene, traced many times
-  RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                         3 * sizeof(float), std::max<std::size_t>(mesh.p_W.size(), 1)));
-  for (std::size_t i = 0; i < mesh.p_W.size(); ++i)
-    for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(mesh.p_W[i][k]);
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), mesh.triangles.size()));
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) idx[3 * i + k] = static_cast<unsigned>(mesh.triangles[i][k]);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(impl_->scene, geom);
-  rtcReleaseGeometry(geom);
+  if (!mesh.triangles.empty()) {  // an empty scene is valid (every ray misses); an empty buffer is not
+    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                           3 * sizeof(float), mesh.p_W.size()));
+    for (std::size_t i = 0; i < mesh.p_W.size(); ++i)
+      for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(mesh.p_W[i][k]);
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                3 * sizeof(unsigned), mesh.triangles.size()));
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) idx[3 * i + k] = static_cast<unsigned>(mesh.triangles[i][k]);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);
+  }
   rtcCommitScene(impl_->scene);
+  if (const RTCError error = rtcGetDeviceError(impl_->device); error != RTC_ERROR_NONE) {
+    rtcReleaseScene(impl_->scene);
+    rtcReleaseDevice(impl_->device);
+    throw std::runtime_error("Embree: building the scene failed with error " + std::to_string(error));
+  }
 }
 
 EmbreeScene::~EmbreeScene() {
