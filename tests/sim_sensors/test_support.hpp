@@ -15,6 +15,11 @@ inline SceneHints city_hints(double size_m, double radius_m) {
   return h;
 }
 
-inline SceneHints hints_for(const Scenario& s) { return city_hints(s.city.size_m, s.city.size_m < 300 ? 8 : 15); }
+// Like the procedural city's (tools/sim/world): a 28 m x 28 m tower in a 48 m block with 12 m streets around it.
+inline SceneHints hints_for(const Scenario& s) {
+  SceneHints h = city_hints(s.city.size_m, 19.8);
+  h.clear_radius_m = 36;
+  return h;
+}
 
 }  // namespace twinslam::sim::testing

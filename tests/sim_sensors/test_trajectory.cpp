@@ -126,13 +126,26 @@ TEST(SimFlight, LoopsCircleTheBuildingThreeTimesRisingWithCameraTowardIt) {
   EXPECT_NEAR(angle / (2 * M_PI), 3.0, 0.1);  // three counter-clockwise loops
   // Stays on the published ring (the world keeps it free of other buildings).
   const LoopsGeometry g = loops_geometry(sc, hints);
-  EXPECT_GE(g.radius_m, hints.tall_building_radius_m + 12);
+  EXPECT_GE(g.radius_m, hints.tall_building_radius_m + 6);
   EXPECT_NEAR(g.turns, 3.0, 0.1);
   EXPECT_GT(min_r, g.radius_m - 1.0);
   EXPECT_LT(max_r, g.radius_m + 1.0);
   const double rise = f.at(f.duration()).p_W.z() - f.at(0).p_W.z();
   EXPECT_NEAR(rise, 3 * sc.trajectory.loop_rise_m, 1.0);
   EXPECT_GT(f.at(100).p_W.z(), f.at(20).p_W.z() + 1.0);
+}
+
+TEST(SimFlight, LoopsStayInsideTheClearZoneOfTheWorld) {
+  const Scenario sc = builtin_scenario("city-loops");
+  SceneHints hints = city_hints(600, 19.8);  // the procedural city's 28 m x 28 m tower
+  hints.clear_radius_m = 36;                 // its block half-width + one street
+  const LoopsGeometry g = loops_geometry(sc, hints);
+  EXPECT_GE(g.radius_m, 19.8 + 6 - 1e-9);
+  EXPECT_LE(g.radius_m, 33 + 1e-9);
+  EXPECT_NEAR(g.turns, 3.0, 0.1);  // 500 m fits three loops at 26.7 m
+  hints.clear_radius_m = 28;       // a tight plaza: the ring shrinks, more loops are flown
+  EXPECT_NEAR(loops_geometry(sc, hints).radius_m, 25, 1e-9);
+  EXPECT_NO_THROW(make_flight_trajectory(sc, hints));
 }
 
 TEST(SimFlight, SurveyFliesAbout500mOverTheBlocksLookingDownForward) {

@@ -110,9 +110,12 @@ LoopsGeometry loops_geometry(const Scenario& sc, const SceneHints& hints) {
   const double length = cruise_length(cfg);
   LoopsGeometry g;
   g.center_W = hints.tall_building_center_W;
-  // Radius for `loops` loops at the cruise length, kept 12-30 m outside the building's half-diagonal.
-  g.radius_m = std::clamp(length / (2 * M_PI * cfg.loops), hints.tall_building_radius_m + 12.0,
-                          hints.tall_building_radius_m + 30.0);
+  // Radius for `loops` loops at the cruise length, 6-30 m outside the building's half-diagonal (its corners) and
+  // 3 m inside the clear zone around it when the world says how large that is.
+  double hi = hints.tall_building_radius_m + 30.0;
+  if (hints.clear_radius_m > 0) hi = std::min(hi, hints.clear_radius_m - 3.0);
+  const double lo = std::min(hints.tall_building_radius_m + 6.0, hi);
+  g.radius_m = std::clamp(length / (2 * M_PI * cfg.loops), lo, hi);
   g.turns = length / (2 * M_PI * g.radius_m);
   const double range = cfg.altitude_m[1] - cfg.altitude_m[0];
   g.rise_m = std::min(cfg.loop_rise_m * g.turns, range);

@@ -86,6 +86,9 @@ struct SceneHints {
   Eigen::Vector2d tall_building_center_W = Eigen::Vector2d::Zero();  // [m, E N]
   double tall_building_radius_m = 15;          // half-diagonal of its footprint [m]
   double tall_building_height_m = 60;          // [m]
+  // Radius around tall_building_center_W that is free of other buildings and street furniture [m]; 0 = unknown.
+  // The loops ring stays 3 m inside it.
+  double clear_radius_m = 0;
   double ground_z_m = 0;                       // [m, U]
   std::array<double, 4> extent_W{-300, -300, 300, 300};  // min e, min n, max e, max n [m]
 };

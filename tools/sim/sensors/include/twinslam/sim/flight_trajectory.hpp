@@ -58,7 +58,7 @@ FlightTrajectory make_flight_trajectory(const Scenario& scenario, const SceneHin
 // around hints.tall_building_center_W starting south of it, from altitude z_start_m rising by rise_m in total.
 struct LoopsGeometry {
   Eigen::Vector2d center_W = Eigen::Vector2d::Zero();  // [m, E N]
-  double radius_m = 0;     // hints.tall_building_radius_m + 12..30 m, chosen for trajectory.loops loops
+  double radius_m = 0;     // tall_building_radius_m + 6..30 m (< clear_radius_m - 3), for trajectory.loops loops
   double turns = 0;        // loops actually flown (differs from trajectory.loops when the radius is clamped)
   double z_start_m = 0;    // [m, W up]
   double rise_m = 0;       // [m]
