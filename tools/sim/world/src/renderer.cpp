@@ -122,26 +122,56 @@ void Renderer::render_rows(const Eigen::Isometry3d& T_WC, const CameraModel& cam
       rtcInitIntersectContext(&context);
       context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       rtcIntersect16(valid, scene, &context, &rh);
+
+      // Hit points, normals and sun angles; then one shadow packet towards the sun for the sunlit ones.
+      Eigen::Vector3d p_W[16], n_W[16], d_W[16];
+      double sun_cos[16];
+      alignas(64) int lit[16];
+      alignas(64) RTCRay16 shadow;
+      bool any_lit = false;
+      for (int i = 0; i < 16; ++i) {
+        lit[i] = 0;
+        if (!valid[i]) continue;
+        d_W[i] = Eigen::Vector3d(rh.ray.dir_x[i], rh.ray.dir_y[i], rh.ray.dir_z[i]);
+        if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+        p_W[i] = c_W + static_cast<double>(rh.ray.tfar[i]) * d_W[i];
+        n_W[i] = Eigen::Vector3d(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]).normalized();
+        if (n_W[i].dot(d_W[i]) > 0) n_W[i] = -n_W[i];  // face the camera: walls are lit from the side we see
+        sun_cos[i] = n_W[i].dot(config_.sun_W);
+        if (sun_cos[i] <= 0 || !config_.shadows) continue;
+        lit[i] = -1;
+        any_lit = true;
+        const Eigen::Vector3d o = p_W[i] + 1e-3 * n_W[i];  // leave the surface we start on
+        shadow.org_x[i] = static_cast<float>(o.x());
+        shadow.org_y[i] = static_cast<float>(o.y());
+        shadow.org_z[i] = static_cast<float>(o.z());
+        shadow.dir_x[i] = static_cast<float>(config_.sun_W.x());
+        shadow.dir_y[i] = static_cast<float>(config_.sun_W.y());
+        shadow.dir_z[i] = static_cast<float>(config_.sun_W.z());
+        shadow.tnear[i] = 0.0f;
+        shadow.tfar[i] = static_cast<float>(config_.max_range_m);
+        shadow.time[i] = 0.0f;
+        shadow.mask[i] = 0xFFFFFFFF;
+        shadow.id[i] = static_cast<unsigned>(i);
+        shadow.flags[i] = 0;
+      }
+      if (any_lit) rtcOccluded16(lit, scene, &context, &shadow);  // occluded lanes get tfar = -inf
+
       for (int i = 0; i < 16; ++i) {
         if (!valid[i]) continue;
         const int u = u0 + i % kTile, v = v0 + i / kTile;
         const std::size_t idx = static_cast<std::size_t>(v) * w + u;
-        const Eigen::Vector3d d_W(rh.ray.dir_x[i], rh.ray.dir_y[i], rh.ray.dir_z[i]);
         float value;
         if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
-          const double t = rh.ray.tfar[i];
-          const Eigen::Vector3d p_W = c_W + t * d_W;
-          Eigen::Vector3d n_W(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
-          n_W.normalize();
-          if (n_W.dot(d_W) > 0) n_W = -n_W;  // face the camera: walls are lit from the side we see
           const std::uint32_t tri = rh.hit.primID[i];
           // Pixel footprint grows with distance and with grazing incidence.
-          const double footprint = t * pixel_angle / std::max(std::abs(n_W.dot(d_W)), 0.2);
-          const float a = albedo(p_W, n_W, mesh.kind[tri], mesh.building_id[tri], footprint);
-          const double light = config_.ambient + (1 - config_.ambient) * std::max(0.0, n_W.dot(config_.sun_W));
+          const double footprint = rh.ray.tfar[i] * pixel_angle / std::max(std::abs(n_W[i].dot(d_W[i])), 0.2);
+          const float a = albedo(p_W[i], n_W[i], mesh.kind[tri], mesh.building_id[tri], footprint);
+          const bool sunlit = sun_cos[i] > 0 && (!config_.shadows || shadow.tfar[i] >= 0);
+          const double light = config_.ambient + (1 - config_.ambient) * (sunlit ? sun_cos[i] : 0.0);
           value = static_cast<float>(255.0 * a * light);
         } else {
-          value = background(d_W);
+          value = background(d_W[i]);
         }
         value += static_cast<float>(config_.noise_sigma) * pixel_noise(seed, idx);
         image->ptr<std::uint8_t>(v)[u] = static_cast<std::uint8_t>(std::clamp(value + 0.5f, 0.0f, 255.0f));

@@ -27,6 +27,7 @@ struct RenderConfig {
   double noise_sigma = 2.0;                                  // sensor noise std dev [grey levels]
   Eigen::Vector3d sun_W = Eigen::Vector3d(0.5, 0.3, 0.81);   // direction towards the sun (normalized inside) [W]
   double ambient = 0.45;                                     // light on surfaces facing away from the sun [0, 1]
+  bool shadows = true;                                       // cast shadows (one more ray per sunlit pixel)
   double max_range_m = 5000;                                 // rays end here [m]
 };
 
