@@ -53,7 +53,7 @@ TEST(CliErrors, MissingImageFile) {
 }
 
 TEST(CliErrors, UnknownParticipantProfile) {
-  const auto r = test::run_process({test::bin("twinslam-tracking"), "--profile", "no.such.profile"},
+  const auto r = test::run_process({test::bin("twinslam-tiles"), "--profile", "no.such.profile"},
                                    {{"TWINSLAM_DOMAIN", std::to_string(test::test_domain())}});
   expect_bad_input(r, {"twinslam.xml", "no participant profile named 'no.such.profile'"});
 }

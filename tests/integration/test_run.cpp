@@ -26,6 +26,8 @@ TEST(Run, EurocExcerptFlowsThroughTheServices) {
   EXPECT_EQ(run["messages"]["twinslam/v1/imu"], 29120);
   EXPECT_EQ(run["messages"]["twinslam/v1/image"], 95);
   EXPECT_EQ(run["frames_processed"], 95);  // every frame acknowledged by tracking
+  // The tracking service turned every image into a feature frame (EuRoC: >= 100 features after the first frames).
+  EXPECT_EQ(run["messages"]["twinslam/v1/features"], 95);
   for (const auto& [name, code] : run["services"].items()) EXPECT_EQ(code, 0) << name;
   EXPECT_TRUE(fs::exists(out / "logs/ingest.log"));
   fs::remove_all(out);

@@ -110,7 +110,9 @@ int run_pipeline(const RunOptions& o) {
   process::Supervisor supervisor({out / "logs"});
   const std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", std::to_string(domain)}};
   for (const auto& s : services) {
-    supervisor.start({s, "twinslam-" + s, {"--vehicle", o.vehicle, replay}, env, {}, false});
+    std::vector<std::string> args{"--vehicle", o.vehicle, replay};
+    if (s == "tracking") args.insert(args.end(), {"--camera", (dataset.root / "mav0/cam0/sensor.yaml").string()});
+    supervisor.start({s, "twinslam-" + s, args, env, {}, false});
   }
   const auto ready_deadline = std::chrono::steady_clock::now() +
                               std::chrono::milliseconds(static_cast<long>(o.start_timeout_s * 1000));

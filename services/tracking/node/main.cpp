@@ -1,14 +1,24 @@
-// twinslam-tracking: visual frontend service (images -> FeatureFrame).
+// twinslam-tracking: visual frontend service (images + IMU -> FeatureFrame).
 #include <memory>
 
 #include "tracking_node.hpp"
+#include "twinslam/camera/sensor_yaml.hpp"
 #include "twinslam/dds/service_main.hpp"
 
 int main(int argc, char** argv) {
-  std::unique_ptr<twinslam::tracking::TrackingNode> tracking;
-  return twinslam::dds::run_wired_service(
-      "tracking", "twinslam tracking service: images and IMU in, tracked features out", argc, argv,
-      [&](twinslam::dds::Node& node, twinslam::dds::Counters& counters) {
-        tracking = std::make_unique<twinslam::tracking::TrackingNode>(node, counters);
-      });
+  CLI::App app{"twinslam tracking service: images and IMU in, tracked features out"};
+  twinslam::dds::ServiceOptions service;
+  twinslam::dds::add_service_options(app, service);
+  std::string camera_file;
+  app.add_option("--camera", camera_file, "Camera calibration (EuRoC sensor.yaml: intrinsics, distortion, T_BS)")
+      ->required();
+  return twinslam::dds::service_main("tracking", app, service, argc, argv, [&] {
+    twinslam::tracking::TrackingNodeOptions options;
+    options.camera = twinslam::read_camera_sensor_yaml(camera_file);
+    twinslam::dds::Node node(service.node);
+    twinslam::dds::Counters counters;
+    twinslam::dds::HeartbeatPublisher heartbeat(node, counters);
+    twinslam::tracking::TrackingNode tracking(node, counters, options);
+    return twinslam::dds::serve_until_shutdown(heartbeat);
+  });
 }

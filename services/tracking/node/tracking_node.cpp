@@ -1,22 +1,121 @@
 #include "tracking_node.hpp"
 
-namespace twinslam::tracking {
+#include <algorithm>
 
-TrackingNode::TrackingNode(dds::Node& node, dds::Counters& counters)
-    : node_(node), counters_(counters), ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)) {
+#include <opencv2/core/mat.hpp>
+#include <spdlog/spdlog.h>
+
+#include "twinslam/camera/camera_model.hpp"
+#include "twinslam/tracking/gyro_rotation.hpp"
+
+namespace twinslam::tracking {
+using Clock = std::chrono::steady_clock;
+
+TrackingNode::TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNodeOptions options)
+    : node_(node),
+      counters_(counters),
+      options_(std::move(options)),
+      frontend_(std::shared_ptr<const CameraModel>(make_camera(options_.camera.intrinsics)), options_.frontend),
+      features_(node.writer<msg::FeatureFrame>(dds::topics::kFeatures)),
+      ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)) {
+  thread_ = std::thread([this] { worker(); });
   node.subscribe<msg::Imu>(dds::topics::kImu, [this](const msg::Imu& m) {
-    if (m.vehicle_id() == node_.config().vehicle_id) counters_.add("imu_in");
+    if (m.vehicle_id() != node_.config().vehicle_id) return;
+    counters_.add("imu_in");
+    std::lock_guard lock(mutex_);
+    const auto& w = m.gyro_radps();
+    const auto& a = m.accel_mps2();
+    imu_.push_back({m.stamp_ns(), Eigen::Vector3d(w.x(), w.y(), w.z()), Eigen::Vector3d(a.x(), a.y(), a.z())});
+    wake_.notify_one();
   });
   node.subscribe<msg::Image>(dds::topics::kImage, [this](const msg::Image& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     counters_.add("images_in");
-    msg::FrameAck ack;
-    ack.vehicle_id(m.vehicle_id());
-    ack.service("tracking");
-    ack.stamp_ns(m.stamp_ns());
-    ack.seq(m.seq());
-    ack_.publish(ack);
+    std::lock_guard lock(mutex_);
+    pending_.push_back({std::make_shared<msg::Image>(m), Clock::now()});
+    wake_.notify_one();
   });
+}
+
+TrackingNode::~TrackingNode() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  thread_.join();
+}
+
+void TrackingNode::worker() {
+  std::unique_lock lock(mutex_);
+  while (!stop_) {
+    if (pending_.empty()) {
+      wake_.wait(lock);
+      continue;
+    }
+    const auto& front = pending_.front();
+    const bool imu_covers = !imu_.empty() && imu_.back().stamp_ns >= front.image->stamp_ns();
+    if (!imu_covers && Clock::now() - front.arrived < options_.imu_wait) {
+      wake_.wait_for(lock, std::chrono::milliseconds(10));
+      continue;
+    }
+    const auto image = front.image;
+    pending_.pop_front();
+    lock.unlock();
+    process(*image);
+    lock.lock();
+  }
+}
+
+void TrackingNode::process(const msg::Image& m) {
+  const int w = static_cast<int>(m.width()), h = static_cast<int>(m.height());
+  if (m.encoding() != "mono8" || m.step() < m.width() || m.data().size() < static_cast<std::size_t>(m.step()) * h ||
+      w != options_.camera.intrinsics.width || h != options_.camera.intrinsics.height) {
+    counters_.add("images_rejected");
+    spdlog::warn("image {}: {} {}x{} does not match the camera ({}x{} mono8); skipped", m.stamp_ns(), m.encoding(), w,
+                 h, options_.camera.intrinsics.width, options_.camera.intrinsics.height);
+  } else {
+    const cv::Mat image(h, w, CV_8UC1, const_cast<uint8_t*>(m.data().data()), m.step());
+    std::optional<Eigen::Matrix3d> R_prev_curr_C;
+    {
+      std::lock_guard lock(mutex_);
+      if (last_frame_ns_ >= 0) {
+        R_prev_curr_C = gyro_rotation_C(imu_, last_frame_ns_, m.stamp_ns(), options_.camera.T_BC.linear());
+      }
+      // Keep only the IMU needed from this frame on.
+      const auto keep = std::find_if(imu_.begin(), imu_.end(),
+                                     [&](const estimator::ImuSample& s) { return s.stamp_ns >= m.stamp_ns(); });
+      imu_.erase(imu_.begin(), keep == imu_.begin() ? imu_.begin() : keep - 1);
+      last_frame_ns_ = m.stamp_ns();
+    }
+    const FrameResult result = frontend_.track(m.stamp_ns(), image, R_prev_curr_C ? &*R_prev_curr_C : nullptr);
+    msg::FeatureFrame out;
+    out.vehicle_id(m.vehicle_id());
+    out.camera_id(m.camera_id());
+    out.stamp_ns(m.stamp_ns());
+    out.seq(seq_++);
+    out.tracking_ms(result.timing.total_ms);
+    out.features().reserve(result.features.size());
+    for (const auto& f : result.features) {
+      msg::Feature mf;
+      mf.id(f.id);
+      mf.u(static_cast<float>(f.uv.x()));
+      mf.v(static_cast<float>(f.uv.y()));
+      mf.bearing_C().x(f.bearing_C.x());
+      mf.bearing_C().y(f.bearing_C.y());
+      mf.bearing_C().z(f.bearing_C.z());
+      mf.track_length(f.track_length);
+      out.features().push_back(mf);
+    }
+    features_.publish(out);
+    counters_.add("frames_out");
+  }
+  msg::FrameAck ack;
+  ack.vehicle_id(m.vehicle_id());
+  ack.service("tracking");
+  ack.stamp_ns(m.stamp_ns());
+  ack.seq(m.seq());
+  ack_.publish(ack);
 }
 
 }  // namespace twinslam::tracking

@@ -1,20 +1,58 @@
 #pragma once
-// The tracking service's DDS shell. Subscribes Image and Imu. The frontend algorithm (detection, IMU-aided KLT,
-// RANSAC) arrives with the tracking issue; until then the node consumes and counts its inputs, publishes no
-// FeatureFrame (it has none to give), and in lockstep acknowledges each image it has consumed so replay proceeds.
+// The tracking service's DDS shell: Image + Imu in, FeatureFrame out (and a FrameAck per frame for lockstep replay).
+// A frame is processed once the IMU has reached its stamp (so the gyro rotation since the previous frame, used as
+// the KLT prediction, is complete), or after `imu_wait` if the IMU stream ends or lags: deterministic whenever
+// the IMU covers the frame, and never stuck at the end of a dataset.
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "twinslam/camera/camera_config.hpp"
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
+#include "twinslam/estimator/imu_types.hpp"
+#include "twinslam/tracking/frontend.hpp"
 
 namespace twinslam::tracking {
 
+struct TrackingNodeOptions {
+  CameraConfig camera;                                   // intrinsics and T_BC (from the dataset's sensor.yaml)
+  FrontendConfig frontend;
+  std::chrono::milliseconds imu_wait{100};               // how long a frame may wait for IMU past its stamp
+};
+
 class TrackingNode {
  public:
-  TrackingNode(dds::Node& node, dds::Counters& counters);
+  TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNodeOptions options);
+  ~TrackingNode();
 
  private:
+  struct PendingFrame {
+    std::shared_ptr<msg::Image> image;
+    std::chrono::steady_clock::time_point arrived;
+  };
+  void worker();
+  void process(const msg::Image& image);
+
   dds::Node& node_;
   dds::Counters& counters_;
+  TrackingNodeOptions options_;
+  Frontend frontend_;
+  dds::Writer<msg::FeatureFrame> features_;
   dds::Writer<msg::FrameAck> ack_;
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<PendingFrame> pending_;
+  std::vector<estimator::ImuSample> imu_;                // recent IMU, trimmed behind the last processed frame
+  std::int64_t last_frame_ns_ = -1;
+  unsigned long long seq_ = 0;
+  bool stop_ = false;
+  std::thread thread_;
 };
 
 }  // namespace twinslam::tracking
