@@ -189,17 +189,21 @@ void Frontend::reject_outliers(const std::vector<Eigen::Vector3d>& f_prev, const
 }
 
 void Frontend::prune_and_detect(const cv::Mat& image, FrameResult* result) {
-  // Longest tracks first: when two tracks converge on one spot, the older one (more useful to the estimator) stays.
+  // Tracks that converged onto one spot (KLT windows sliding onto the same corner) are duplicates: of two tracks closer
+  // than half the detection spacing, the longer one (more useful to the estimator) stays. Pruning at the full spacing
+  // would cut healthy tracks whose distance merely shrinks under perspective.
   std::stable_sort(tracks_.begin(), tracks_.end(), [](const Track& a, const Track& b) { return a.length > b.length; });
+  cv::Mat1b close(image.rows, image.cols, static_cast<unsigned char>(0));
   cv::Mat1b taken(image.rows, image.cols, static_cast<unsigned char>(0));
   std::vector<Track> kept;
   std::vector<cv::Point2f> existing;
   kept.reserve(config_.max_features);
   for (const Track& t : tracks_) {
-    if (!is_free(taken, t.px) || static_cast<int>(kept.size()) >= config_.max_features) {
+    if (!is_free(close, t.px) || static_cast<int>(kept.size()) >= config_.max_features) {
       ++result->stats.pruned;
       continue;
     }
+    mark_taken(close, t.px, 0.5 * config_.min_distance_px);
     mark_taken(taken, t.px, config_.min_distance_px);
     kept.push_back(t);
     existing.push_back(t.px);

@@ -8,8 +8,9 @@
 //   3. pyramidal KLT forward, then backward from the result; a track survives if it comes back within
 //      fb_threshold_px of where it started;
 //   4. RANSAC on bearings drops matches that violate the epipolar geometry (ransac.hpp);
-//   5. tracks closer than min_distance_px to a longer track are dropped, then Shi-Tomasi corners fill the grid
-//      buckets back up to max_features (detector.hpp), each with a new id.
+//   5. tracks closer than min_distance_px / 2 to a longer track are dropped as duplicates, then Shi-Tomasi corners at
+//      least min_distance_px from every track fill the grid buckets back up to max_features (detector.hpp), each
+//      with a new id.
 // Not thread-safe; one Frontend per camera.
 #include <cstdint>
 #include <memory>
@@ -45,7 +46,7 @@ struct FrameStats {
   int lost_klt = 0;         // KLT did not converge, left the image, or the pixel has no bearing
   int lost_fb = 0;          // failed the forward-backward check
   int lost_ransac = 0;      // epipolar outliers
-  int pruned = 0;           // too close to a longer track
+  int pruned = 0;           // closer than min_distance_px / 2 to a longer track
   int tracked = 0;          // survivors carried over from the previous frame
   int detected = 0;         // new features
   bool predicted = false;   // a gyro rotation was used as the KLT initial guess

@@ -10,7 +10,8 @@ struct FrontendConfig {
   int max_features = 180;           // tracks kept per frame; detection tops up to this count
   int grid_cols = 8;                // buckets across the image
   int grid_rows = 5;                // buckets down the image
-  double min_distance_px = 20.0;    // no new (or kept) feature closer than this to another one [px]
+  double min_distance_px = 20.0;    // no new feature closer than this to another one; tracks closer than half of
+                                    // it to a longer track are dropped as duplicates [px]
   double quality_level = 0.01;      // Shi-Tomasi: keep corners with min eigenvalue >= quality * best of the bucket
   double min_eigenvalue = 2e-4;     // absolute floor on the min eigenvalue (OpenCV's normalized units; 0 = none),
                                     // so flat buckets (sky, white walls) do not get noise corners
