@@ -1,6 +1,7 @@
 // ReprojectionFactor on unit bearings: analytic vs numeric Jacobians (pinhole-like and > 90 deg bearings), zero
 // residual at the truth, pixel-equivalent scaling, the anchor's own observation, cheirality.
 #include <cmath>
+#include <memory>
 #include <random>
 #include <sstream>
 
@@ -153,4 +154,64 @@ TEST(ReprojectionNoise, RejectsNonPositiveValues) {
   noise = {};
   noise.focal_px = std::nan("");
   EXPECT_THROW(noise.validate(), twinslam::InputError);
+}
+
+TEST(ReprojectionFactor, JacobiansAreConsistentWithTheCeresPoseManifold) {
+  // What the solver uses is J * PlusJacobian: it must equal the derivative of r(Plus(x, delta)) at delta = 0.
+  std::mt19937 rng(17);
+  Scene s(rng, 25.0);
+  const est::ReprojectionFactor factor(s.f_Ca, (s.f_Cj + ts::random_vector(rng, 0.01)).normalized(), s.T_BC, 460.0);
+  std::unique_ptr<ceres::Manifold> manifold(est::new_pose_manifold());
+  const auto J = ts::analytic_jacobians(factor, s.params());
+  double* poses[2] = {s.pose_a, s.pose_j};
+  for (int b = 0; b < 2; ++b) {
+    Eigen::Matrix<double, 7, 6, Eigen::RowMajor> plus_jacobian;
+    ASSERT_TRUE(manifold->PlusJacobian(poses[b], plus_jacobian.data()));
+    const Eigen::MatrixXd analytic = J[b] * plus_jacobian;
+    Eigen::MatrixXd numeric(2, 6);
+    const double h = 1e-6;
+    double original[7];
+    std::copy(poses[b], poses[b] + 7, original);
+    for (int k = 0; k < 6; ++k) {
+      Eigen::Vector2d r[2];
+      for (int side = 0; side < 2; ++side) {
+        double delta[6] = {0, 0, 0, 0, 0, 0};
+        delta[k] = side == 0 ? h : -h;
+        ASSERT_TRUE(manifold->Plus(original, delta, poses[b]));
+        const double* p[3] = {s.pose_a, s.pose_j, &s.rho};
+        ASSERT_TRUE(factor.Evaluate(p, r[side].data(), nullptr));
+      }
+      std::copy(original, original + 7, poses[b]);
+      numeric.col(k) = (r[0] - r[1]) / (2 * h);
+    }
+    EXPECT_LT(ts::max_relative_error(analytic, numeric), 1e-6) << "pose " << b;
+  }
+}
+
+TEST(InverseDepthLandmark, PointAndInverseDepthRoundTripAndReanchoring) {
+  std::mt19937 rng(18);
+  const Eigen::Isometry3d T_BC = ts::forward_camera_T_BC();
+  const Eigen::Isometry3d T_LB_a = ts::random_pose(rng), T_LB_n = ts::random_pose(rng);
+  est::InverseDepthLandmark lm;
+  lm.anchor_keyframe = 3;
+  lm.f_Ca = Eigen::Vector3d(0.2, -0.1, 1.0).normalized();
+  lm.rho = 0.125;  // 8 m
+  const Eigen::Vector3d p_L = est::point_in_local(T_LB_a, T_BC, lm.f_Ca, lm.rho);
+  EXPECT_NEAR(((T_LB_a * T_BC).inverse() * p_L - 8.0 * lm.f_Ca).norm(), 0.0, 1e-12);
+  ASSERT_TRUE(est::inverse_depth_along(T_LB_a, T_BC, lm.f_Ca, p_L).has_value());
+  EXPECT_NEAR(*est::inverse_depth_along(T_LB_a, T_BC, lm.f_Ca, p_L), 0.125, 1e-14);
+  EXPECT_FALSE(est::inverse_depth_along(T_LB_a, T_BC, -lm.f_Ca, p_L).has_value());  // behind
+
+  // Pose block layout of imu_state.hpp.
+  double block[7];
+  ts::pack_pose(T_LB_a, block);
+  EXPECT_LT((est::pose_from_block(block).matrix() - T_LB_a.matrix()).cwiseAbs().maxCoeff(), 1e-12);
+
+  // Re-anchoring on the new anchor's exact observation keeps the point (any bearing on the sphere, also z < 0).
+  const Eigen::Vector3d p_Cn = (T_LB_n * T_BC).inverse() * p_L;
+  const auto moved = est::reanchor(lm, T_LB_a, T_LB_n, T_BC, 7, p_Cn.normalized());
+  ASSERT_TRUE(moved.has_value());
+  EXPECT_EQ(moved->anchor_keyframe, 7);
+  EXPECT_LT((est::point_in_local(T_LB_n, T_BC, moved->f_Ca, moved->rho) - p_L).norm(), 1e-12);
+  EXPECT_FALSE(est::reanchor(lm, T_LB_a, T_LB_n, T_BC, 7, -p_Cn.normalized()).has_value());
 }
