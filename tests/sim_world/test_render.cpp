@@ -74,34 +74,44 @@ TriMesh single_box_for_top_down() {
 Eigen::Vector2d fit(const std::vector<Eigen::Vector2d>& yx) {
   Eigen::MatrixXd A(yx.size(), 2);
   Eigen::VectorXd x(yx.size());
-  for (std::size_t i = 0; i < yx.size(); ++i) A.row(i) << 1, yx[i][0], x[i] = yx[i][1];
+  for (std::size_t i = 0; i < yx.size(); ++i) {
+    A(i, 0) = 1;
+    A(i, 1) = yx[i][0];
+    x[i] = yx[i][1];
+  }
   return A.colPivHouseholderQr().solve(x);
 }
 
 // The silhouette corner measured in the image: the box's left edge (first dark pixel scanning right, rows below
 // the corner) and top edge (first dark pixel scanning down, columns right of the corner), each a line fitted over
-// 18 px, intersected. Single-sample rendering quantizes each edge to a pixel boundary; the fit averages that out.
+// 28 px, intersected. Single-sample rendering quantizes each edge to a pixel boundary; the fit averages that out
+// only if the edge crosses several pixel columns/rows, so the cameras are rolled (see rolled()).
 Eigen::Vector2d measured_corner(const cv::Mat& image, const Eigen::Vector2d& guess) {
   constexpr int kDark = 195;  // sky >= 205, surfaces <= 184 (+ noise)
   const int u0 = static_cast<int>(std::lround(guess.x())), v0 = static_cast<int>(std::lround(guess.y()));
   std::vector<Eigen::Vector2d> left, top;  // (v, u_edge) and (u, v_edge)
-  for (int k = 3; k <= 20; ++k) {
-    for (int u = u0 - 15; u <= u0 + 15; ++u)
+  for (int k = 3; k <= 30; ++k) {
+    for (int u = u0 - 20; u <= u0 + 20; ++u)
       if (image.at<std::uint8_t>(v0 + k, u) < kDark) {
         left.emplace_back(v0 + k, u - 0.5);
         break;
       }
-    for (int v = v0 - 15; v <= v0 + 15; ++v)
+    for (int v = v0 - 20; v <= v0 + 20; ++v)
       if (image.at<std::uint8_t>(v, u0 + k) < kDark) {
         top.emplace_back(u0 + k, v - 0.5);
         break;
       }
   }
-  EXPECT_EQ(left.size(), 18u);
-  EXPECT_EQ(top.size(), 18u);
+  EXPECT_EQ(left.size(), 28u);
+  EXPECT_EQ(top.size(), 28u);
   const Eigen::Vector2d l = fit(left), t = fit(top);  // u = l0 + l1 v, v = t0 + t1 u
   const double u = (l[0] + l[1] * t[0]) / (1 - l[1] * t[1]);
   return {u, t[0] + t[1] * u};
+}
+
+// The camera rolled about its optical axis by roll_deg, so the box edges are slanted in the image.
+Eigen::Isometry3d rolled(const Eigen::Isometry3d& T_WC, double roll_deg) {
+  return T_WC * Eigen::AngleAxisd(roll_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ());
 }
 
 void expect_corner_within_1px(const CameraModel& cam, const Eigen::Isometry3d& T_WC) {
@@ -112,20 +122,22 @@ void expect_corner_within_1px(const CameraModel& cam, const Eigen::Isometry3d& T
   ASSERT_EQ(cam.project(T_WC.inverse() * corner_W, &projected), ProjectionStatus::kOk);
   ASSERT_TRUE(cam.in_image(projected, 40));
   const Eigen::Vector2d measured = measured_corner(image, projected);
-  EXPECT_LT((measured - projected).norm(), 1.0) << "projected " << projected.transpose() << " measured "
+  ::testing::Test::RecordProperty("corner_error_px", std::to_string((measured - projected).norm()));
+  // Issue 3 asks for 1 px; measured <= 0.15 px, and 0.5 px also catches a half-pixel convention slip.
+  EXPECT_LT((measured - projected).norm(), 0.5) << "projected " << projected.transpose() << " measured "
                                                 << measured.transpose();
 }
 
 TEST(SimWorldRender, ProjectedCornerLandsOnRenderedCornerFisheye) {
   const auto cam = fisheye_120();
-  expect_corner_within_1px(*cam, look_at({0.5, 0, 0.5}, {3, 25, 1}));    // corner far off-centre (about 40 deg)
-  expect_corner_within_1px(*cam, look_at({1, 0, 2}, {-2, 25, 6}));       // corner near the centre
+  expect_corner_within_1px(*cam, rolled(look_at({0.5, 0, 0.5}, {3, 25, 1}), 12));   // corner ~40 deg off-axis
+  expect_corner_within_1px(*cam, rolled(look_at({1, 0, 2}, {-2, 25, 6}), -9));     // corner near the centre
 }
 
 TEST(SimWorldRender, ProjectedCornerLandsOnRenderedCornerPinhole) {
   const auto cam = pinhole_90();
-  expect_corner_within_1px(*cam, look_at({0.5, 0, 0.5}, {2, 25, 3}));
-  expect_corner_within_1px(*cam, look_at({1, 0, 2}, {-2, 25, 6}));
+  expect_corner_within_1px(*cam, rolled(look_at({0.5, 0, 0.5}, {2, 25, 3}), 12));
+  expect_corner_within_1px(*cam, rolled(look_at({1, 0, 2}, {-2, 25, 6}), -9));
 }
 
 TEST(SimWorldRender, RaycastAndVisibilityHaveKnownAnswers) {
