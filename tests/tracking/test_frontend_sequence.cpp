@@ -78,5 +78,68 @@ TEST(FrontendSequence, TracksFollowTheTruePixelsThroughAPanningSequence) {
   EXPECT_GE(median_length, 10u);
 }
 
+// The same for a 200-degree fisheye (ideal equidistant, 183 px/rad), looking into a textured sphere at infinity (an
+// equirectangular map): features beyond 90 degrees from the optical axis are tracked, and the RANSAC on bearings
+// keeps them.
+TEST(FrontendSequence, FisheyeTracksBeyond90DegreesFollowTheTruePixels) {
+  CameraIntrinsics in;
+  in.distortion = DistortionModel::kEquidistant;
+  in.width = 640;
+  in.height = 400;
+  in.fu = in.fv = 320.0 / (100.0 * M_PI / 180.0);  // +-100 deg across the width
+  in.cu = 319.5;
+  in.cv = 199.5;
+  const std::shared_ptr<const CameraModel> camera = make_camera(in);
+  cv::Mat noise(600, 1200, CV_32F), sphere;  // 0.3 deg per texel: longitude across, latitude down
+  cv::RNG rng(23);
+  rng.fill(noise, cv::RNG::UNIFORM, 0.0, 1.0);
+  cv::GaussianBlur(noise, noise, cv::Size(0, 0), 1.5);
+  cv::normalize(noise, sphere, 0, 255, cv::NORM_MINMAX, CV_8U);
+  std::vector<Eigen::Vector3d> rays(640 * 400);  // bearing of every pixel, once
+  for (int v = 0; v < 400; ++v) {
+    for (int u = 0; u < 640; ++u) ASSERT_TRUE(camera->unproject(Eigen::Vector2d(u, v), &rays[v * 640 + u]));
+  }
+  auto render = [&](const Eigen::Matrix3d& R_S_cam) {  // camera orientation in the sphere's frame
+    cv::Mat1f map_u(400, 640), map_v(400, 640);
+    for (int i = 0; i < 640 * 400; ++i) {
+      const Eigen::Vector3d f = R_S_cam * rays[i];
+      map_u(i / 640, i % 640) = static_cast<float>((std::atan2(f.x(), f.z()) + M_PI) / (2 * M_PI) * 1200.0 - 0.5);
+      const double latitude = std::asin(std::clamp(f.y(), -1.0, 1.0));
+      map_v(i / 640, i % 640) = static_cast<float>((latitude + M_PI / 2) / M_PI * 600.0 - 0.5);
+    }
+    cv::Mat img;
+    cv::remap(sphere, img, map_u, map_v, cv::INTER_LINEAR, cv::BORDER_WRAP);
+    return img;
+  };
+
+  Frontend frontend(camera);
+  std::map<std::uint64_t, Eigen::Vector3d> first_ray_S;
+  Eigen::Matrix3d R_S_cam = Eigen::Matrix3d::Identity();
+  int checked = 0, wrong = 0, beyond_90 = 0, fewest = 1000;
+  for (int k = 0; k < 40; ++k) {
+    const Eigen::Matrix3d R_step = geometry::so3_exp(
+        Eigen::Vector3d(0.01 * std::sin(0.3 * k), 1.0 * M_PI / 180.0, 0.01 * std::cos(0.2 * k)));
+    if (k > 0) R_S_cam = R_S_cam * R_step;
+    const FrameResult r = frontend.track(k * 50'000'000LL, render(R_S_cam), k > 0 ? &R_step : nullptr);
+    if (k > 0) fewest = std::min(fewest, static_cast<int>(r.features.size()));
+    for (const auto& f : r.features) {
+      if (f.track_length == 1) {
+        first_ray_S[f.id] = R_S_cam * f.bearing_C;
+        continue;
+      }
+      Eigen::Vector2d truth;
+      ASSERT_EQ(camera->project(R_S_cam.transpose() * first_ray_S.at(f.id), &truth), ProjectionStatus::kOk);
+      ++checked;
+      if ((f.uv - truth).norm() > 2.0) ++wrong;
+      if (f.bearing_C.z() < 0.0) ++beyond_90;
+    }
+  }
+  std::printf("fisheye: fewest features %d; wrong tracks %d of %d; %d track observations beyond 90 deg\n", fewest,
+              wrong, checked, beyond_90);
+  EXPECT_GE(fewest, 120);
+  EXPECT_LT(wrong, checked / 100 + 1);
+  EXPECT_GT(beyond_90, 200);
+}
+
 }  // namespace
 }  // namespace twinslam::tracking

@@ -89,11 +89,12 @@ struct RotationRun {
   double max_error_px = 0.0;
 };
 
-// Frame 0 = texture, frame 1 = the same scene after the camera turned by R_prev_curr (infinitely far scene, so the
-// image moves by the homography x_curr = K R_prev_curr^T K^-1 x_prev).
+// Frame 0 and frame 1 view the same infinitely far scene before and after the camera turned by R_prev_curr, so the
+// image moves by the homography x_curr = K R_prev_curr^T K^-1 x_prev.
 RotationRun run_rotation(bool with_prediction) {
   const auto camera = pinhole_640x400();
-  const Eigen::Matrix3d R_prev_curr = geometry::so3_exp(Eigen::Vector3d(0.10, 0.20, 0.03));  // 13 deg, mostly pan and tilt
+  // 13 deg, mostly pan and tilt (translational KLT cannot follow a large roll of its window, prediction or not).
+  const Eigen::Matrix3d R_prev_curr = geometry::so3_exp(Eigen::Vector3d(0.10, 0.20, 0.03));
   Eigen::Matrix3d K;
   K << 400, 0, 319.5, 0, 400, 199.5, 0, 0, 1;
   const Eigen::Matrix3d H = K * R_prev_curr.transpose() * K.inverse();

@@ -46,7 +46,9 @@ void FrontendConfig::validate(const std::string& source) const {
   if (klt_window_px < 5 || klt_window_px % 2 == 0) {
     bad(source, "klt_window_px", "must be odd and >= 5, got " + std::to_string(klt_window_px));
   }
-  if (klt_levels < 0 || klt_levels > 8) bad(source, "klt_levels", "must lie in [0, 8], got " + std::to_string(klt_levels));
+  if (klt_levels < 0 || klt_levels > 8) {
+    bad(source, "klt_levels", "must lie in [0, 8], got " + std::to_string(klt_levels));
+  }
   positive_int(source, "klt_max_iterations", klt_max_iterations);
   positive(source, "klt_epsilon_px", klt_epsilon_px);
   positive(source, "fb_threshold_px", fb_threshold_px);

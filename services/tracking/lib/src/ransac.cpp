@@ -128,7 +128,8 @@ RansacResult ransac_known_rotation(const std::vector<Eigen::Vector3d>& f_prev,
     if (s.better_than(best)) {
       best = s;
       best_E = E;
-      needed = std::max(it + 1, needed_iterations(options.confidence, double(s.inliers) / n, 2, options.max_iterations));
+      const double inlier_ratio = static_cast<double>(s.inliers) / n;
+      needed = std::max(it + 1, needed_iterations(options.confidence, inlier_ratio, 2, options.max_iterations));
     }
   }
   return finish(best_E, f_prev, f_curr, options.threshold_rad, it);
@@ -150,7 +151,8 @@ RansacResult ransac_essential(const std::vector<Eigen::Vector3d>& f_prev, const 
     if (s.better_than(best)) {
       best = s;
       best_E = E;
-      needed = std::max(it + 1, needed_iterations(options.confidence, double(s.inliers) / n, 8, options.max_iterations));
+      const double inlier_ratio = static_cast<double>(s.inliers) / n;
+      needed = std::max(it + 1, needed_iterations(options.confidence, inlier_ratio, 8, options.max_iterations));
     }
   }
   return finish(best_E, f_prev, f_curr, options.threshold_rad, it);

@@ -1,5 +1,6 @@
 #pragma once
-// The visual frontend: mono8 images in, tracked features (stable id, pixel, undistorted unit bearing, track length) out.
+// The visual frontend: mono8 images in, tracked features (stable id, pixel, undistorted unit bearing, track length)
+// out.
 // Per frame (Frontend::track):
 //   1. optional CLAHE, image pyramid;
 //   2. prediction: each feature's bearing rotated by the gyroscope's rotation since the previous frame and projected
