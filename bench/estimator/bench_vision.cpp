@@ -2,7 +2,6 @@
 // triangulating a landmark, a 5-keyframe / 50-landmark visual-inertial bundle adjustment, and marginalizing its oldest
 // keyframe.
 #include <random>
-#include <set>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -90,25 +89,12 @@ void BM_MarginalizeOldestKeyframe(benchmark::State& state) {
   ts::BaState s = ts::true_ba_state(p);
   ceres::Problem problem;
   ts::add_ba_to_problem(p, s, problem, {}, false);
-  std::set<double*> marginalized{s.pose[0].data(), s.speed_bias[0].data()};
+  std::vector<double*> marginalized{s.pose[0].data(), s.speed_bias[0].data()};
   for (std::size_t i = 0; i < p.landmarks.size(); ++i) {
-    if (p.landmarks[i].anchor == 0) marginalized.insert(&s.rho[i]);
+    if (p.landmarks[i].anchor == 0) marginalized.push_back(&s.rho[i]);
   }
   est::Marginalizer marginalizer;
-  std::vector<ceres::ResidualBlockId> ids;
-  problem.GetResidualBlocks(&ids);
-  int factors = 0;
-  for (const auto id : ids) {
-    std::vector<double*> blocks;
-    problem.GetParameterBlocksForResidualBlock(id, &blocks);
-    bool touches = false;
-    for (double* b : blocks) touches = touches || marginalized.count(b) > 0;
-    if (!touches) continue;
-    marginalizer.add_factor(problem.GetCostFunctionForResidualBlock(id), problem.GetLossFunctionForResidualBlock(id),
-                            blocks);
-    ++factors;
-  }
-  for (double* b : marginalized) marginalizer.marginalize_block(b);
+  const auto factors = marginalizer.add_connected(problem, marginalized).size();
   int tangent = 0;
   for (auto _ : state) {
     const auto prior = marginalizer.marginalize();

@@ -2,7 +2,6 @@
 // marginalization of the oldest keyframe at the optimum keeping the optimum of the rest (pose manifolds included).
 #include <cmath>
 #include <random>
-#include <set>
 #include <vector>
 
 #include <ceres/ceres.h>
@@ -100,25 +99,14 @@ TEST(BundleAdjustment, MarginalizingTheOldestKeyframeAtTheOptimumKeepsTheOptimum
   ASSERT_TRUE(summary.IsSolutionUsable()) << summary.BriefReport();
   const ts::BaState optimum = s;
 
-  // Collect every factor touching the blocks to marginalize, as the sliding window will.
-  std::set<double*> marginalized{s.pose[0].data(), s.speed_bias[0].data()};
+  // Every factor touching the blocks to marginalize, as the sliding window will collect them.
+  std::vector<double*> marginalized{s.pose[0].data(), s.speed_bias[0].data()};
   for (std::size_t i = 0; i < p.landmarks.size(); ++i) {
-    if (p.landmarks[i].anchor == 0) marginalized.insert(&s.rho[i]);
+    if (p.landmarks[i].anchor == 0) marginalized.push_back(&s.rho[i]);
   }
   est::Marginalizer marginalizer;
-  std::vector<ceres::ResidualBlockId> residuals, connected;
-  problem.GetResidualBlocks(&residuals);
-  for (const auto id : residuals) {
-    std::vector<double*> blocks;
-    problem.GetParameterBlocksForResidualBlock(id, &blocks);
-    bool touches = false;
-    for (double* b : blocks) touches = touches || marginalized.count(b) > 0;
-    if (!touches) continue;
-    marginalizer.add_factor(problem.GetCostFunctionForResidualBlock(id), problem.GetLossFunctionForResidualBlock(id),
-                            blocks);
-    connected.push_back(id);
-  }
-  for (double* b : marginalized) marginalizer.marginalize_block(b);
+  const auto connected = marginalizer.add_connected(problem, marginalized);
+  EXPECT_GT(connected.size(), 2u);  // the IMU factor 0-1, the gauge prior and reprojection factors
   auto prior = marginalizer.marginalize();
   const std::vector<double*> prior_blocks = prior->parameter_blocks();
   // The prior need not have full rank on its blocks: the removed factors alone do not constrain every direction of

@@ -263,3 +263,36 @@ TEST(Marginalizer, RejectsMisuse) {
   only.marginalize_block(x0.data());  // nothing left to hold the prior
   EXPECT_THROW(only.marginalize(), std::logic_error);
 }
+
+TEST(Marginalization, UnconstrainedDirectionsGetNoInformation) {
+  // x0, x1 in R^2. A relative factor r = x1 - x0 - d and an absolute factor on x0's first coordinate only, 2 (x0[0] - c).
+  // Marginalizing x0: H_mm = diag(5, 1), H_rm = -I, H_rr = I, so H* = I - diag(1/5, 1) = diag(4/5, 0): the second
+  // coordinate of x1 (a gauge direction: nothing anchors it) must get exactly no information, and no gradient.
+  Eigen::VectorXd x0(2), x1(2);
+  x0 << 0.3, -1.0;
+  x1 << 1.1, 2.0;
+  const LinearFactor relative({-Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(2, 2)},
+                              Eigen::Vector2d(0.5, 0.5));
+  Eigen::MatrixXd A(1, 2);
+  A << 2.0, 0.0;
+  const LinearFactor absolute({A}, Eigen::VectorXd::Constant(1, 0.2));
+  est::Marginalizer marginalizer;
+  marginalizer.add_factor(&relative, nullptr, {x0.data(), x1.data()});
+  marginalizer.add_factor(&absolute, nullptr, {x0.data()});
+  marginalizer.marginalize_block(x0.data());
+  const auto prior = marginalizer.marginalize();
+  ASSERT_NE(prior, nullptr);
+  EXPECT_EQ(prior->num_residuals(), 1);
+  Eigen::Matrix2d expected;
+  expected << 0.8, 0.0, 0.0, 0.0;
+  EXPECT_LT((prior->hessian() - expected).cwiseAbs().maxCoeff(), 1e-12);
+  // g*: r_rel = x1 - x0 - d = (0.3, 2.5), r_abs = 2 (0.3) - 0.2 = 0.4; g_m = -r_rel + (2 r_abs, 0) = (0.5, -2.5),
+  // g_r = r_rel; g* = g_r + diag(1/5, 1) g_m = (0.3 + 0.1, 2.5 - 2.5) = (0.4, 0).
+  EXPECT_LT((prior->gradient() - Eigen::Vector2d(0.4, 0.0)).cwiseAbs().maxCoeff(), 1e-12);
+
+  // Only the relative factor: no information at all is left, so there is no prior.
+  est::Marginalizer relative_only;
+  relative_only.add_factor(&relative, nullptr, {x0.data(), x1.data()});
+  relative_only.marginalize_block(x0.data());
+  EXPECT_EQ(relative_only.marginalize(), nullptr);
+}

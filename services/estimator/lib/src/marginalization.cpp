@@ -34,6 +34,25 @@ void Marginalizer::marginalize_block(double* block) {
   }
 }
 
+std::vector<ceres::ResidualBlockId> Marginalizer::add_connected(const ceres::Problem& problem,
+                                                                const std::vector<double*>& blocks) {
+  std::vector<ceres::ResidualBlockId> connected;
+  for (double* block : blocks) {
+    marginalize_block(block);
+    std::vector<ceres::ResidualBlockId> ids;
+    problem.GetResidualBlocksForParameterBlock(block, &ids);
+    for (const auto id : ids) {
+      if (std::find(connected.begin(), connected.end(), id) != connected.end()) continue;  // shared by two blocks
+      std::vector<double*> params;
+      problem.GetParameterBlocksForResidualBlock(id, &params);
+      add_factor(problem.GetCostFunctionForResidualBlock(id), problem.GetLossFunctionForResidualBlock(id),
+                 std::move(params));
+      connected.push_back(id);
+    }
+  }
+  return connected;
+}
+
 void Marginalizer::set_block_kind(double* block, BlockKind kind) { kinds_[block] = kind; }
 
 namespace {
@@ -171,6 +190,7 @@ std::unique_ptr<MarginalizationPrior> Marginalizer::marginalize() const {
     if (es.eigenvalues()(i) > config_.min_eigenvalue) keep.push_back(i);
   }
   const int rank = static_cast<int>(keep.size());
+  if (rank == 0) return nullptr;
   Eigen::MatrixXd J0(rank, n);
   Eigen::VectorXd r0(rank);
   for (int k = 0; k < rank; ++k) {

@@ -23,6 +23,7 @@
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
+#include <ceres/problem.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -76,11 +77,15 @@ class Marginalizer {
 
   void add_factor(const ceres::CostFunction* cost, const ceres::LossFunction* loss, std::vector<double*> blocks);
   void marginalize_block(double* block);
+  // Marks `blocks` and adds every residual block of `problem` touching one of them (cost, loss and parameter blocks as
+  // the problem holds them). Returns those residual blocks: remove them from the problem after marginalize().
+  std::vector<ceres::ResidualBlockId> add_connected(const ceres::Problem& problem, const std::vector<double*>& blocks);
   // Kinds default from the size (kPoseSize -> kPose, otherwise kEuclidean); override here.
   void set_block_kind(double* block, BlockKind kind);
 
-  // Evaluates the factors at the current block values and returns the prior on the remaining blocks. Throws
-  // std::logic_error if a marked block is in no factor or no block remains, std::runtime_error if a factor fails.
+  // Evaluates the factors at the current block values and returns the prior on the remaining blocks, or nullptr when
+  // it carries no information (every direction truncated, e.g. only relative factors). Throws std::logic_error if a
+  // marked block is in no factor or no block remains, std::runtime_error if a factor fails to evaluate.
   std::unique_ptr<MarginalizationPrior> marginalize() const;
 
  private:
