@@ -1,7 +1,8 @@
 #pragma once
 // Keyframe selection: a pure function of the tracking state since the last keyframe.
 //
-// A frame becomes a keyframe when (VINS-Mono, Qin et al., TRO 2018, Sec. IV-A, its two criteria):
+// A frame becomes a keyframe when (VINS-Mono, Qin et al., TRO 2018, keyframe selection of its
+// vision front end, the same two criteria):
 //  - the mean parallax of the features tracked since the last keyframe exceeds a threshold. The parallax is
 //    rotation-compensated: each current bearing is rotated into the last keyframe's camera with the gyro-integrated
 //    relative rotation before measuring the angle, because rotation alone gives no depth; or

@@ -3,12 +3,12 @@
 //
 // Why this parameterization: a landmark is stored as the unit bearing f_Ca of its first observation in the camera C_a
 // of an anchor keyframe (a constant, not optimized) plus one inverse depth rho [1/m] along it, p_Ca = f_Ca / rho.
-//  - One optimized parameter per landmark instead of three (VINS-Mono, Qin et al., TRO 2018, Sec. VI-A uses the same
+//  - One optimized parameter per landmark instead of three (VINS-Mono, Qin et al., TRO 2018, Sec. VI, uses the same
 //    "inverse depth in the first observing frame"; OKVIS keeps homogeneous points for the same reason): the Schur
 //    complement of the landmarks is cheap and the anchor observation is satisfied exactly, by construction.
 //  - Well conditioned at low parallax and for far points: the reprojection error is close to linear in rho, and a
 //    point at infinity is rho = 0, a finite value, while depth or Euclidean coordinates diverge (Civera, Davison,
-//    Montiel, "Inverse Depth Parametrization for Monocular SLAM", TRO 2008, Sec. III and its linearity index).
+//    Montiel, "Inverse Depth Parametrization for Monocular SLAM", TRO 2008, and its linearity analysis).
 // The price: when the anchor keyframe leaves the window the landmark must be re-anchored (reanchor()) before the anchor
 // is marginalized, as VINS-Mono does when it slides the window.
 #include <cstdint>

@@ -1,12 +1,13 @@
 #pragma once
 // Marginalization of sliding-window variables into a prior factor (the Schur complement of the linearized factors),
-// as VINS-Mono's MarginalizationFactor (Qin et al., TRO 2018, Sec. VI-D) and OKVIS (Leutenegger et al., IJRR 2015,
-// Sec. IV-C).
+// as VINS-Mono's MarginalizationFactor (Qin et al., TRO 2018, Sec. VI, marginalization) and OKVIS
+// (Leutenegger et al., IJRR 2015, marginalization section).
 //
 // Given the factors connected to the variables x_m to remove, linearized at the current values x0:
 //   sum_f |r_f(x0 [+] dx)|^2 ~= |r(x0) + J dx|^2,   H = J^T J,   g = J^T r,
 // ordered [x_m, x_r] (x_r: the other blocks those factors touch), the Gaussian over x_r after eliminating x_m is
-//   H* = H_rr - H_rm H_mm^-1 H_mr,   g* = g_r - H_rm H_mm^-1 g_m          (Sibley et al., JFR 2010, eq. 10; OKVIS eq. 20)
+//   H* = H_rr - H_rm H_mm^-1 H_mr,   g* = g_r - H_rm H_mm^-1 g_m
+// (the Schur complement of the sliding window filter, Sibley et al., JFR 2010, and of OKVIS),
 // and the prior factor is r_p(x_r) = r0 + J0 (x_r [-] x_r0) with J0^T J0 = H*, J0^T r0 = g*, obtained from the
 // eigen-decomposition H* = V S V^T: J0 = S^1/2 V^T, r0 = S^-1/2 V^T g* (as VINS-Mono), keeping eigenvalues above
 // MarginalizationConfig::min_eigenvalue (unconstrained directions, e.g. the gauge, get no information).
@@ -16,7 +17,7 @@
 //    imu_state.hpp, so the factors' ambient Jacobians map to it exactly with the 4x3 lift dq/dtheta;
 //  - every other block is Euclidean (speed_bias, inverse depth, ...).
 // Robust losses of the marginalized factors are applied by Triggs' correction (Triggs et al., "Bundle Adjustment - A
-// Modern Synthesis", 2000, Sec. 4.3), the same as ceres::Corrector.
+// Modern Synthesis", 2000, robustified cost section), the same as ceres::Corrector.
 #include <memory>
 #include <unordered_map>
 #include <vector>

@@ -5,8 +5,8 @@
 // Parameter blocks: anchor pose [7] = T_LB of the anchor keyframe, observing pose [7] = T_LB of keyframe j,
 // inverse depth [1] (landmark.hpp). Camera extrinsics T_BC are fixed at construction.
 //
-// Prediction (homogeneous, scaled by rho so that rho -> 0, a point at infinity, stays finite; VINS-Mono eq. 25 up to
-// the scale):
+// Prediction (homogeneous, scaled by rho so that rho -> 0, a point at infinity, stays finite; the visual residual of
+// VINS-Mono, Sec. VI, up to the scale):
 //   h = rho p_Cj = R_CB ( R_LBj^T ( R_LBa (R_BC f_Ca + rho t_BC) + rho (p_La - p_Lj) ) - rho t_BC ),   b = h / |h|.
 // Residual: the tangent-plane error of the predicted bearing b against the observed bearing f_Cj,
 //   r = s [t1 t2]^T (b - f_Cj),

@@ -4,7 +4,7 @@
 //
 // 1. Linear: the multi-view midpoint, the point minimizing the sum of squared distances to the rays (c_i, d_i) in L:
 //      sum_i (I - d_i d_i^T) x = sum_i (I - d_i d_i^T) c_i
-//    (Hartley & Zisserman 2nd ed. Sec. 12.5 for two views; Lee & Civera, "Triangulation: why optimize?", BMVC 2019,
+//    (the midpoint method of Hartley & Sturm, "Triangulation", CVIU 1997, for two views; Lee & Civera, "Triangulation: why optimize?", BMVC 2019,
 //    for the generalization). It works on bearings, so fisheye rays beyond 90 deg are no special case.
 // 2. Gauss-Newton on the inverse depth rho along the anchor bearing, minimizing the same tangent-plane bearing errors as
 //    ReprojectionFactor (the anchor observation is exact by construction). With the anchor fixed the prediction in
