@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "twinslam/camera/camera_model.hpp"
+#include "twinslam/core/error.hpp"
 #include "twinslam/tracking/gyro_rotation.hpp"
 
 namespace twinslam::tracking {
@@ -88,7 +89,15 @@ void TrackingNode::process(const msg::Image& m) {
       imu_.erase(imu_.begin(), keep == imu_.begin() ? imu_.begin() : keep - 1);
       last_frame_ns_ = m.stamp_ns();
     }
-    const FrameResult result = frontend_.track(m.stamp_ns(), image, R_prev_curr_C ? &*R_prev_curr_C : nullptr);
+    FrameResult result;
+    try {
+      result = frontend_.track(m.stamp_ns(), image, R_prev_curr_C ? &*R_prev_curr_C : nullptr);
+    } catch (const InputError& e) {  // e.g. a stamp not after the previous one: skip the frame, keep serving
+      counters_.add("images_rejected");
+      spdlog::warn("image {}: {}", m.stamp_ns(), e.what());
+      send_ack(m);
+      return;
+    }
     msg::FeatureFrame out;
     out.vehicle_id(m.vehicle_id());
     out.camera_id(m.camera_id());
@@ -110,6 +119,10 @@ void TrackingNode::process(const msg::Image& m) {
     features_.publish(out);
     counters_.add("frames_out");
   }
+  send_ack(m);
+}
+
+void TrackingNode::send_ack(const msg::Image& m) {
   msg::FrameAck ack;
   ack.vehicle_id(m.vehicle_id());
   ack.service("tracking");

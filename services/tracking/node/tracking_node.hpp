@@ -37,6 +37,7 @@ class TrackingNode {
   };
   void worker();
   void process(const msg::Image& image);
+  void send_ack(const msg::Image& image);
 
   dds::Node& node_;
   dds::Counters& counters_;
