@@ -1,0 +1,62 @@
+#pragma once
+// Configuration of the sliding-window visual-inertial estimator (issue 5): one struct, validated in one place.
+#include <Eigen/Geometry>
+
+#include "twinslam/estimator/imu_types.hpp"
+#include "twinslam/estimator/keyframe_policy.hpp"
+#include "twinslam/estimator/marginalization.hpp"
+#include "twinslam/estimator/reprojection_factor.hpp"
+#include "twinslam/estimator/static_init.hpp"
+#include "twinslam/estimator/triangulation.hpp"
+
+namespace twinslam::estimator {
+
+struct SlidingWindowConfig {
+  int window_keyframes = 8;            // keyframes kept before the oldest is marginalized
+  int max_solver_iterations = 8;       // Levenberg-Marquardt iterations per frame
+  double max_solver_time_s = 0.02;     // solver time cap per frame [s]
+  double focal_px = 460.0;             // fu of the camera: px per radian, converts angles to px [px/rad]
+  double pixel_sigma = 1.0;            // feature noise [px]
+  ImuNoise imu;                        // continuous-time IMU noise (EuRoC imu0/sensor.yaml keys)
+  Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();  // camera in body
+  double gravity_mps2 = 9.81;          // |g| [m/s^2]
+
+  // Initialization. A rest window of 0.5 s suffices for the simulator's ~0.8 s of rest at the start.
+  double static_window_s = 0.5;        // [s]
+  // The IMU rest test alone accepts gentle motion (its thresholds allow a hovering multicopter's vibration), so rest
+  // also needs the features to stand still: mean bearing change between consecutive frames of common tracks [px].
+  double max_rest_feature_motion_px = 2.0;
+  double init_timeout_s = 5.0;         // no rest seen for this long after the first frame -> reported [s]
+  // Prior on the first keyframe: position and yaw fix the gauge of L (L's definition); roll/pitch from gravity.
+  double init_position_sigma_m = 1e-3;      // [m]
+  double init_yaw_sigma_rad = 1e-3;         // [rad]
+  double init_roll_pitch_sigma_rad = 0.02;  // [rad] (about 1 deg: the static init's accuracy)
+  double init_velocity_sigma_mps = 0.05;    // at rest [m/s]
+  double init_gyro_bias_sigma = 0.01;       // [rad/s]
+  double init_accel_bias_sigma = 0.2;       // [m/s^2]
+
+  // Landmarks and outliers.
+  double outlier_threshold_px = 3.0;   // observations farther than this after a solve are removed [px]
+  int min_observations = 2;            // keyframe/frame observations needed to triangulate (anchor included)
+  int max_landmarks = 300;             // triangulated landmarks kept in the window (oldest first)
+  // A keyframe at least this often even without parallax (hovering), so preintegration intervals stay short [s].
+  double max_keyframe_interval_s = 1.0;
+
+  // Divergence: any of these after a solve resets the estimator (status kReinitializing).
+  double max_speed_mps = 50.0;               // |v_L| [m/s]
+  double max_gyro_bias_radps = 0.2;          // |b_g| [rad/s]
+  double max_accel_bias_mps2 = 2.0;          // |b_a| [m/s^2]
+  // Median (not mean: a few gross outliers before their removal must not count as divergence) reprojection error of
+  // the window's observations after a solve [px].
+  double max_median_reprojection_px = 10.0;
+
+  KeyframePolicyConfig keyframe;       // focal_px is overwritten with focal_px above
+  TriangulationConfig triangulation;   // focal_px likewise
+  MarginalizationConfig marginalization;
+
+  void validate() const;  // throws twinslam::InputError naming the bad field
+  ReprojectionNoise reprojection_noise() const;
+  StaticInitConfig static_init() const;
+};
+
+}  // namespace twinslam::estimator

@@ -1,0 +1,69 @@
+#pragma once
+// Internal state of SlidingWindowEstimator, shared by its source files (not an API).
+#include <array>
+#include <chrono>
+#include <deque>
+#include <map>
+#include <memory>
+#include <unordered_map>
+
+#include "twinslam/estimator/landmark.hpp"
+#include "twinslam/estimator/marginalization.hpp"
+#include "twinslam/estimator/preintegration.hpp"
+#include "twinslam/estimator/sliding_window_estimator.hpp"
+
+namespace twinslam::estimator {
+
+struct WindowFrame {
+  std::int64_t id = 0;
+  std::int64_t stamp_ns = 0;
+  bool keyframe = false;
+  std::array<double, kPoseSize> pose{};             // Ceres block [p_L, q_LB xyzw]
+  std::array<double, kSpeedBiasSize> speed_bias{};  // Ceres block [v_L, b_g, b_a]
+  std::unordered_map<std::int64_t, Eigen::Vector3d> bearings;  // feature id -> f_C
+  std::shared_ptr<Preintegration> imu_from_prev;    // previous frame -> this one (null for the oldest)
+  Eigen::Isometry3d T_LB() const { return pose_from_block(pose.data()); }
+};
+
+struct WindowLandmark {
+  InverseDepthLandmark lm;    // anchor_keyframe = WindowFrame::id of the anchor
+  double rho = 0.1;           // Ceres block (lm.rho is synced after each solve)
+  double mean_error_px = 0.0; // after the last solve
+  double parallax_deg = 0.0;  // at triangulation
+};
+
+struct WindowState {
+  SlidingWindowConfig config;
+  std::vector<ImuSample> imu;                 // sorted; trimmed to what the window needs
+  std::deque<std::unique_ptr<WindowFrame>> frames;  // oldest first; only the last may be a non-keyframe
+  std::map<std::int64_t, WindowLandmark> landmarks;  // triangulated, by feature id
+  std::unique_ptr<MarginalizationPrior> prior;
+  bool first_prior_active = false;            // frames.front() still carries the initial-state prior
+  ImuState first_prior_state;
+  bool initialized = false;
+  EstimatorStatus idle_status = EstimatorStatus::kInitializing;
+  std::optional<ImuState> pending_init;
+  std::unordered_map<std::int64_t, Eigen::Vector3d> previous_bearings;  // while initializing (stillness check)
+  std::int64_t first_frame_ns = -1;           // first frame seen since the last (re)start
+  std::int64_t last_frame_ns = -1;
+  std::int64_t next_frame_id = 0;
+  std::optional<LocalMapEstimate> local_map;
+  std::vector<std::shared_ptr<WindowFactorProvider>> providers;
+};
+
+// Result of one window solve (window_solver.cpp).
+struct SolveSummary {
+  double median_error_px = 0.0;  // over all reprojection factors before outlier removal
+  int outliers_removed = 0;
+};
+
+// Builds the problem from `s`, solves it, syncs landmarks, removes outlier observations and bad landmarks.
+SolveSummary solve_window(WindowState& s);
+// Triangulates features seen in at least config.min_observations window frames that are not landmarks yet.
+void triangulate_new_landmarks(WindowState& s);
+// Re-anchors the oldest keyframe's landmarks, marginalizes it into the prior and removes it from the window.
+void marginalize_oldest(WindowState& s);
+// The window's landmarks in L with quality values.
+std::vector<LandmarkEstimate> window_landmarks(const WindowState& s);
+
+}  // namespace twinslam::estimator

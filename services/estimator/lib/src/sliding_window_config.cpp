@@ -1,0 +1,64 @@
+#include "twinslam/estimator/sliding_window_config.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "twinslam/core/error.hpp"
+
+namespace twinslam::estimator {
+
+void SlidingWindowConfig::validate() const {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0) || !std::isfinite(v)) throw InputError(std::string("sliding_window.") + name + ": must be > 0");
+  };
+  if (window_keyframes < 2) throw InputError("sliding_window.window_keyframes: must be >= 2");
+  if (max_solver_iterations < 1) throw InputError("sliding_window.max_solver_iterations: must be >= 1");
+  if (min_observations < 2) throw InputError("sliding_window.min_observations: must be >= 2");
+  if (max_landmarks < 1) throw InputError("sliding_window.max_landmarks: must be >= 1");
+  positive(max_solver_time_s, "max_solver_time_s");
+  positive(focal_px, "focal_px");
+  positive(pixel_sigma, "pixel_sigma");
+  positive(gravity_mps2, "gravity_mps2");
+  positive(static_window_s, "static_window_s");
+  positive(init_timeout_s, "init_timeout_s");
+  positive(max_rest_feature_motion_px, "max_rest_feature_motion_px");
+  positive(init_position_sigma_m, "init_position_sigma_m");
+  positive(init_yaw_sigma_rad, "init_yaw_sigma_rad");
+  positive(init_roll_pitch_sigma_rad, "init_roll_pitch_sigma_rad");
+  positive(init_velocity_sigma_mps, "init_velocity_sigma_mps");
+  positive(init_gyro_bias_sigma, "init_gyro_bias_sigma");
+  positive(init_accel_bias_sigma, "init_accel_bias_sigma");
+  positive(outlier_threshold_px, "outlier_threshold_px");
+  positive(max_keyframe_interval_s, "max_keyframe_interval_s");
+  positive(max_speed_mps, "max_speed_mps");
+  positive(max_gyro_bias_radps, "max_gyro_bias_radps");
+  positive(max_accel_bias_mps2, "max_accel_bias_mps2");
+  positive(max_median_reprojection_px, "max_median_reprojection_px");
+  if (!T_BC.matrix().allFinite()) throw InputError("sliding_window.T_BC: not finite");
+  imu.validate();
+  reprojection_noise().validate();
+  static_init().validate();
+  KeyframePolicyConfig k = keyframe;
+  k.focal_px = focal_px;
+  k.validate();
+  TriangulationConfig t = triangulation;
+  t.focal_px = focal_px;
+  t.validate();
+  marginalization.validate();
+}
+
+ReprojectionNoise SlidingWindowConfig::reprojection_noise() const {
+  ReprojectionNoise n;
+  n.focal_px = focal_px;
+  n.pixel_sigma = pixel_sigma;
+  return n;
+}
+
+StaticInitConfig SlidingWindowConfig::static_init() const {
+  StaticInitConfig c;
+  c.window_s = static_window_s;
+  c.gravity_mps2 = gravity_mps2;
+  return c;
+}
+
+}  // namespace twinslam::estimator

@@ -1,0 +1,277 @@
+// Frame flow of the sliding window: initialization, IMU prediction, keyframe decision, solve, divergence, sliding.
+#include "twinslam/estimator/sliding_window_estimator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/estimator/keyframe_policy.hpp"
+#include "twinslam/estimator/sliding_window_state.hpp"
+#include "twinslam/estimator/static_init.hpp"
+
+namespace twinslam::estimator {
+namespace {
+
+ImuState frame_state(const WindowFrame& f) { return unpack(f.pose.data(), f.speed_bias.data()); }
+
+FrameEstimate make_estimate(const WindowFrame& f, EstimatorStatus status) {
+  FrameEstimate e;
+  e.stamp_ns = f.stamp_ns;
+  e.status = status;
+  e.keyframe = f.keyframe;
+  const ImuState st = frame_state(f);
+  e.T_LB = f.T_LB();
+  e.v_L = st.v_L;
+  e.bias = st.bias;
+  return e;
+}
+
+// IMU samples covering [t0, t1]; when the buffer ends before t1 the last sample is held up to t1 (zero-order hold),
+// so a frame whose IMU is late (the node waits at most 100 ms) is still predicted.
+std::vector<ImuSample> covering(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1) {
+  const auto span = covering_samples(imu, t0, t1);
+  std::vector<ImuSample> out(span.begin(), span.end());
+  if (!out.empty() && out.back().stamp_ns < t1) {
+    ImuSample hold = out.back();
+    hold.stamp_ns = t1;
+    out.push_back(hold);
+  }
+  return out;
+}
+
+// x_j from x_i and the preintegrated delta (Forster eq. 33 without noise), g_L = (0, 0, -|g|).
+void predict(const WindowFrame& prev, const Preintegration& pre, double gravity, WindowFrame& next) {
+  const ImuState i = frame_state(prev);
+  const PreintegratedDelta d = pre.corrected(i.bias);
+  const Eigen::Vector3d g(0, 0, -gravity);
+  const double dt = pre.dt();
+  const Eigen::Matrix3d R_i = i.q_LB.toRotationMatrix();
+  ImuState j = i;
+  j.q_LB = Eigen::Quaterniond(R_i * d.R).normalized();
+  j.v_L = i.v_L + g * dt + R_i * d.v;
+  j.p_L = i.p_L + i.v_L * dt + 0.5 * g * dt * dt + R_i * d.p;
+  pack(j, next.pose.data(), next.speed_bias.data());
+}
+
+PreintegrationConfig preintegration_config(const SlidingWindowConfig& c) {
+  PreintegrationConfig p;
+  p.noise = c.imu;
+  return p;
+}
+
+void start_window(WindowState& s, std::int64_t stamp_ns, const ImuState& state,
+                  const std::vector<FeatureBearing>& features) {
+  auto f = std::make_unique<WindowFrame>();
+  f->id = s.next_frame_id++;
+  f->stamp_ns = stamp_ns;
+  f->keyframe = true;
+  pack(state, f->pose.data(), f->speed_bias.data());
+  for (const auto& b : features) f->bearings[b.id] = b.f_C;
+  s.frames.push_back(std::move(f));
+  s.first_prior_active = true;
+  s.first_prior_state = state;
+  s.initialized = true;
+}
+
+// Clears the window after divergence; the next static initialization restarts it.
+void reset(WindowState& s) {
+  s.frames.clear();
+  s.landmarks.clear();
+  s.prior.reset();
+  s.first_prior_active = false;
+  s.initialized = false;
+  s.idle_status = EstimatorStatus::kReinitializing;
+  s.first_frame_ns = -1;
+}
+
+// Mean angle [px] between this frame's bearings and the previous frame's, over common tracks. Without features the
+// IMU alone decides (0); with features but none in common (first frame) stillness is not shown yet (infinity).
+double feature_motion_px(const WindowState& s, const std::vector<FeatureBearing>& features) {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& b : features) {
+    const auto it = s.previous_bearings.find(b.id);
+    if (it == s.previous_bearings.end()) continue;
+    sum += std::atan2(b.f_C.cross(it->second).norm(), b.f_C.dot(it->second));
+    ++n;
+  }
+  if (features.empty()) return 0.0;
+  return n > 0 ? s.config.focal_px * sum / n : std::numeric_limits<double>::infinity();
+}
+
+bool diverged(const WindowState& s, const SolveSummary& summary) {
+  const auto& c = s.config;
+  for (const auto& f : s.frames) {
+    const ImuState st = frame_state(*f);
+    if (!st.p_L.allFinite() || !st.v_L.allFinite() || st.v_L.norm() > c.max_speed_mps ||
+        st.bias.gyro.norm() > c.max_gyro_bias_radps || st.bias.accel.norm() > c.max_accel_bias_mps2) {
+      return true;
+    }
+  }
+  return summary.median_error_px > c.max_median_reprojection_px;
+}
+
+// Keyframe decision for the newest frame against the last keyframe (keyframe_policy.hpp), plus a time limit.
+bool is_keyframe(const WindowState& s, const WindowFrame& kf, const WindowFrame& cur) {
+  const auto& c = s.config;
+  if (1e-9 * static_cast<double>(cur.stamp_ns - kf.stamp_ns) >= c.max_keyframe_interval_s) return true;
+  std::vector<TrackedBearing> tracked;
+  for (const auto& [id, f_Cc] : cur.bearings) {
+    const auto it = kf.bearings.find(id);
+    if (it != kf.bearings.end()) tracked.push_back({it->second, f_Cc});
+  }
+  KeyframeInput in;
+  in.tracked = tracked;
+  in.keyframe_features = kf.bearings.size();
+  const Eigen::Matrix3d R_BC = c.T_BC.linear();
+  const Eigen::Matrix3d dR = kf.T_LB().linear().transpose() * cur.T_LB().linear();
+  in.R_CkCc = R_BC.transpose() * dR * R_BC;
+  KeyframePolicyConfig kc = c.keyframe;
+  kc.focal_px = c.focal_px;
+  return decide_keyframe(kc, in).is_keyframe;
+}
+
+// Repropagates the preintegrations whose linearization bias is far from the current estimate (Forster eq. 44 holds
+// only near it).
+void repropagate(WindowState& s) {
+  for (std::size_t k = 1; k < s.frames.size(); ++k) {
+    if (s.frames[k]->imu_from_prev) s.frames[k]->imu_from_prev->repropagate_if_needed(frame_state(*s.frames[k - 1]).bias);
+  }
+}
+
+void trim_imu(WindowState& s) {
+  if (s.frames.empty()) {
+    // Keep what static initialization needs.
+    const auto keep_ns = static_cast<std::int64_t>((s.config.static_window_s + 1.0) * 1e9);
+    if (!s.imu.empty() && s.imu.back().stamp_ns - s.imu.front().stamp_ns > 2 * keep_ns) {
+      const std::int64_t t = s.imu.back().stamp_ns - keep_ns;
+      s.imu.erase(s.imu.begin(), std::find_if(s.imu.begin(), s.imu.end(), [&](const ImuSample& x) { return x.stamp_ns >= t; }));
+    }
+    return;
+  }
+  // Only IMU after the newest keyframe is needed again (older preintegrations store their samples).
+  std::int64_t t = s.frames.back()->stamp_ns;
+  for (const auto& f : s.frames) if (f->keyframe) t = f->stamp_ns;
+  auto it = std::find_if(s.imu.begin(), s.imu.end(), [&](const ImuSample& x) { return x.stamp_ns > t; });
+  if (it != s.imu.begin()) --it;
+  s.imu.erase(s.imu.begin(), it);
+}
+
+}  // namespace
+
+SlidingWindowEstimator::SlidingWindowEstimator(const SlidingWindowConfig& config) : s_(std::make_unique<WindowState>()) {
+  config.validate();
+  s_->config = config;
+}
+
+SlidingWindowEstimator::~SlidingWindowEstimator() = default;
+
+void SlidingWindowEstimator::add_imu(const ImuSample& sample) {
+  if (!sample.gyro_B.allFinite() || !sample.accel_B.allFinite()) {
+    throw InputError("imu sample at " + std::to_string(sample.stamp_ns) + " ns: not finite");
+  }
+  if (!s_->imu.empty() && sample.stamp_ns <= s_->imu.back().stamp_ns) {
+    throw InputError("imu sample at " + std::to_string(sample.stamp_ns) + " ns: timestamp not increasing");
+  }
+  s_->imu.push_back(sample);
+}
+
+void SlidingWindowEstimator::initialize_next_frame(const ImuState& state) { s_->pending_init = state; }
+
+void SlidingWindowEstimator::add_factor_provider(std::shared_ptr<WindowFactorProvider> provider) {
+  s_->providers.push_back(std::move(provider));
+}
+
+const std::optional<LocalMapEstimate>& SlidingWindowEstimator::local_map() const { return s_->local_map; }
+std::size_t SlidingWindowEstimator::landmark_count() const { return s_->landmarks.size(); }
+const SlidingWindowConfig& SlidingWindowEstimator::config() const { return s_->config; }
+std::size_t SlidingWindowEstimator::keyframe_count() const {
+  return static_cast<std::size_t>(std::count_if(s_->frames.begin(), s_->frames.end(), [](const auto& f) { return f->keyframe; }));
+}
+
+FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std::vector<FeatureBearing>& features) {
+  const auto t0 = std::chrono::steady_clock::now();
+  WindowState& s = *s_;
+  if (s.last_frame_ns >= 0 && stamp_ns <= s.last_frame_ns) {
+    throw InputError("frame at " + std::to_string(stamp_ns) + " ns: timestamp not increasing");
+  }
+  for (const auto& b : features) {
+    if (!b.f_C.allFinite() || std::abs(b.f_C.norm() - 1.0) > 1e-3) {
+      throw InputError("frame at " + std::to_string(stamp_ns) + " ns: feature " + std::to_string(b.id) +
+                       " has no unit bearing");
+    }
+  }
+  s.last_frame_ns = stamp_ns;
+  s.local_map.reset();
+  auto finish = [&](FrameEstimate e) {
+    e.estimator_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    trim_imu(s);
+    return e;
+  };
+
+  if (!s.initialized) {
+    if (s.first_frame_ns < 0) s.first_frame_ns = stamp_ns;
+    std::optional<ImuState> init = s.pending_init;
+    s.pending_init.reset();
+    const bool still = feature_motion_px(s, features) <= s.config.max_rest_feature_motion_px;
+    s.previous_bearings.clear();
+    for (const auto& b : features) s.previous_bearings[b.id] = b.f_C;
+    if (!init && still) {
+      const auto end = std::upper_bound(s.imu.begin(), s.imu.end(), stamp_ns,
+                                        [](std::int64_t t, const ImuSample& x) { return t < x.stamp_ns; });
+      const std::vector<ImuSample> upto(s.imu.begin(), end);
+      if (const auto rest = try_static_init(upto, s.config.static_init())) {
+        init = ImuState{};
+        init->q_LB = rest->q_LB;
+        init->bias = rest->bias;
+      }
+    }
+    if (!init) {
+      FrameEstimate e;
+      e.stamp_ns = stamp_ns;
+      e.status = s.idle_status;
+      e.init_timed_out = 1e-9 * static_cast<double>(stamp_ns - s.first_frame_ns) > s.config.init_timeout_s;
+      return finish(e);
+    }
+    s.previous_bearings.clear();
+    start_window(s, stamp_ns, *init, features);
+    FrameEstimate e = make_estimate(*s.frames.back(), EstimatorStatus::kTracking);
+    s.local_map = LocalMapEstimate{stamp_ns, e.T_LB, {}};
+    return finish(e);
+  }
+
+  // The previous newest frame did not become a keyframe: drop it and its observations (paper Sec. III-B).
+  if (!s.frames.back()->keyframe) s.frames.pop_back();
+  const WindowFrame& kf = *s.frames.back();
+  auto cur = std::make_unique<WindowFrame>();
+  cur->id = s.next_frame_id++;
+  cur->stamp_ns = stamp_ns;
+  const std::vector<ImuSample> samples = covering(s.imu, kf.stamp_ns, stamp_ns);
+  cur->imu_from_prev = std::make_shared<Preintegration>(preintegration_config(s.config), frame_state(kf).bias, samples,
+                                                        kf.stamp_ns, stamp_ns);
+  predict(kf, *cur->imu_from_prev, s.config.gravity_mps2, *cur);
+  for (const auto& b : features) cur->bearings[b.id] = b.f_C;
+  cur->keyframe = is_keyframe(s, kf, *cur);
+  s.frames.push_back(std::move(cur));
+
+  triangulate_new_landmarks(s);
+  const SolveSummary summary = solve_window(s);
+  if (diverged(s, summary)) {
+    FrameEstimate e = make_estimate(*s.frames.back(), EstimatorStatus::kReinitializing);
+    reset(s);
+    return finish(e);
+  }
+  repropagate(s);
+  const WindowFrame& newest = *s.frames.back();
+  FrameEstimate e = make_estimate(newest, EstimatorStatus::kTracking);
+  if (newest.keyframe) {
+    s.local_map = LocalMapEstimate{newest.stamp_ns, newest.T_LB(), window_landmarks(s)};
+    if (static_cast<int>(s.frames.size()) > s.config.window_keyframes) marginalize_oldest(s);
+  }
+  return finish(e);
+}
+
+}  // namespace twinslam::estimator

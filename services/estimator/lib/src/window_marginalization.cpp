@@ -1,0 +1,60 @@
+// Sliding the window: the oldest keyframe leaves it into the marginalization prior.
+#include <ceres/cost_function.h>
+
+#include "twinslam/estimator/imu_factor.hpp"
+#include "twinslam/estimator/sliding_window_state.hpp"
+#include "twinslam/estimator/state_prior.hpp"
+
+namespace twinslam::estimator {
+
+StatePriorSigmas first_prior_sigmas(const SlidingWindowConfig& c);  // window_solver.cpp
+
+void marginalize_oldest(WindowState& s) {
+  WindowFrame& k0 = *s.frames[0];
+  WindowFrame& k1 = *s.frames[1];
+  // 1. Re-anchor the landmarks of k0 in the next frame observing them (landmark.hpp); drop those nobody else sees.
+  for (auto it = s.landmarks.begin(); it != s.landmarks.end();) {
+    InverseDepthLandmark& lm = it->second.lm;
+    bool keep = true;
+    if (lm.anchor_keyframe == k0.id) {
+      keep = false;
+      for (std::size_t k = 1; k < s.frames.size(); ++k) {
+        const WindowFrame& f = *s.frames[k];
+        const auto b = f.bearings.find(lm.id);
+        if (b == f.bearings.end() || !f.keyframe) continue;
+        lm.rho = it->second.rho;
+        if (const auto moved = reanchor(lm, k0.T_LB(), f.T_LB(), s.config.T_BC, f.id, b->second)) {
+          lm = *moved;
+          it->second.rho = moved->rho;
+          keep = true;
+        }
+        break;
+      }
+    }
+    it = keep ? std::next(it) : s.landmarks.erase(it);
+  }
+  // 2. Schur complement of k0's state over the factors touching it: the IMU factor k0 -> k1, the previous prior and
+  // the initial-state prior. k0's visual observations are dropped rather than marginalized, which keeps the prior
+  // free of landmark blocks (landmarks come and go every frame); their information on k1.. is lost (a VINS-Mono-style
+  // marginalization of the re-anchored landmarks' k0 terms is a possible refinement).
+  const Eigen::Vector3d g_L(0, 0, -s.config.gravity_mps2);
+  Marginalizer m(s.config.marginalization);
+  ImuFactor imu(k1.imu_from_prev, g_L);
+  m.add_factor(&imu, nullptr, {k0.pose.data(), k0.speed_bias.data(), k1.pose.data(), k1.speed_bias.data()});
+  std::unique_ptr<ceres::CostFunction> pose_prior, sb_prior;
+  if (s.first_prior_active) {
+    pose_prior.reset(new_pose_prior(s.first_prior_state, first_prior_sigmas(s.config)));
+    sb_prior.reset(new_speed_bias_prior(s.first_prior_state, first_prior_sigmas(s.config)));
+    m.add_factor(pose_prior.get(), nullptr, {k0.pose.data()});
+    m.add_factor(sb_prior.get(), nullptr, {k0.speed_bias.data()});
+  }
+  if (s.prior) m.add_factor(s.prior.get(), nullptr, s.prior->parameter_blocks());
+  m.marginalize_block(k0.pose.data());
+  m.marginalize_block(k0.speed_bias.data());
+  s.prior = m.marginalize();
+  s.first_prior_active = false;
+  k1.imu_from_prev.reset();
+  s.frames.pop_front();
+}
+
+}  // namespace twinslam::estimator

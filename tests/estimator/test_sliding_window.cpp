@@ -1,0 +1,154 @@
+// The sliding-window estimator on simulated flights: accuracy against ground truth, bounded window, outlier tracks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "sliding_window_sim.hpp"
+#include "twinslam/core/error.hpp"
+#include "twinslam/estimator/sliding_window_estimator.hpp"
+
+namespace twinslam::estimator {
+namespace {
+
+using testing::SimRun;
+
+struct RunResult {
+  double rmse_position_m = 0.0;    // over frames after the first 2 s
+  double max_position_m = 0.0;
+  double max_rotation_deg = 0.0;
+  double max_speed_error_mps = 0.0;
+  std::size_t max_keyframes = 0;
+  std::size_t max_landmarks = 0;
+  int keyframes = 0;
+  int not_tracking = 0;
+  std::vector<LocalMapEstimate> maps;
+};
+
+SlidingWindowConfig sim_config(const SimRun& run, double pixel_sigma) {
+  SlidingWindowConfig c;
+  c.T_BC = run.T_BC;
+  c.pixel_sigma = pixel_sigma;
+  c.max_solver_time_s = 10.0;  // deterministic: only the iteration count bounds the solver in tests
+  return c;
+}
+
+// Feeds IMU up to each frame's stamp, then the frame. The window starts from the true state of the first frame
+// (L = W of the simulation) with zero bias, so the estimate is compared to the truth without alignment.
+RunResult run_estimator(SlidingWindowEstimator& est, const SimRun& run,
+                        const std::function<void(std::size_t, std::vector<FeatureBearing>&)>& edit = {}) {
+  RunResult r;
+  std::size_t imu_next = 0;
+  ImuState init = run.frames.front().truth;
+  init.bias = ImuBias{};
+  est.initialize_next_frame(init);
+  double sum_sq = 0.0;
+  int n = 0;
+  for (std::size_t k = 0; k < run.frames.size(); ++k) {
+    const auto& f = run.frames[k];
+    while (imu_next < run.imu.size() && run.imu[imu_next].stamp_ns <= f.stamp_ns + 5'000'000) est.add_imu(run.imu[imu_next++]);
+    std::vector<FeatureBearing> features = f.features;
+    if (edit) edit(k, features);
+    const FrameEstimate e = est.add_frame(f.stamp_ns, features);
+    if (e.status != EstimatorStatus::kTracking) {
+      ++r.not_tracking;
+      continue;
+    }
+    r.keyframes += e.keyframe ? 1 : 0;
+    r.max_keyframes = std::max(r.max_keyframes, est.keyframe_count());
+    r.max_landmarks = std::max(r.max_landmarks, est.landmark_count());
+    if (est.local_map()) r.maps.push_back(*est.local_map());
+    if (f.stamp_ns < 2'000'000'000) continue;
+    const double dp = (e.T_LB.translation() - f.truth.p_L).norm();
+    const double dR = Eigen::AngleAxisd(Eigen::Quaterniond(e.T_LB.linear()).inverse() * f.truth.q_LB).angle();
+    sum_sq += dp * dp;
+    ++n;
+    r.max_position_m = std::max(r.max_position_m, dp);
+    r.max_rotation_deg = std::max(r.max_rotation_deg, dR * 180.0 / 3.14159265358979);
+    r.max_speed_error_mps = std::max(r.max_speed_error_mps, (e.v_L - f.truth.v_L).norm());
+  }
+  r.rmse_position_m = n > 0 ? std::sqrt(sum_sq / n) : 1e9;
+  return r;
+}
+
+TEST(SlidingWindow, FollowsSimulatedFlightWithinBound) {
+  const SimRun run = testing::make_sim_run(20.0, 0.5, 11);
+  SlidingWindowEstimator est(sim_config(run, 0.5));
+  const RunResult r = run_estimator(est, run);
+  std::printf("rmse %.3f m, max %.3f m, max rot %.2f deg, max v err %.3f m/s, keyframes %d\n", r.rmse_position_m,
+              r.max_position_m, r.max_rotation_deg, r.max_speed_error_mps, r.keyframes);
+  EXPECT_EQ(r.not_tracking, 0);
+  // About 30 m of flight: position error (ATE RMSE, no alignment: L is initialized from the true state) < 0.3 m.
+  EXPECT_LT(r.rmse_position_m, 0.3);
+  EXPECT_LT(r.max_rotation_deg, 2.0);
+  EXPECT_LT(r.max_speed_error_mps, 0.3);
+}
+
+TEST(SlidingWindow, MarginalizationKeepsWindowBounded) {
+  const SimRun run = testing::make_sim_run(12.0, 0.5, 12);
+  SlidingWindowConfig c = sim_config(run, 0.5);
+  c.window_keyframes = 5;
+  SlidingWindowEstimator est(c);
+  const RunResult r = run_estimator(est, run);
+  EXPECT_GT(r.keyframes, 3 * c.window_keyframes);       // the window slid several times
+  EXPECT_LE(r.max_keyframes, static_cast<std::size_t>(c.window_keyframes));
+  EXPECT_LE(r.max_landmarks, static_cast<std::size_t>(c.max_landmarks));
+  EXPECT_LT(r.rmse_position_m, 0.3);
+}
+
+TEST(SlidingWindow, OutlierTrackIsRemovedAndAccuracyKept) {
+  const SimRun run = testing::make_sim_run(15.0, 0.5, 13);
+  SlidingWindowEstimator est(sim_config(run, 0.5));
+  // Ten tracks whose bearings jump between unrelated directions (mismatches of a front end), in every frame.
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const RunResult r = run_estimator(est, run, [&](std::size_t, std::vector<FeatureBearing>& f) {
+    for (int k = 0; k < 10; ++k) {
+      f.push_back({1'000'000 + k, Eigen::Vector3d(0.3 * n(rng), 0.3 * n(rng), 1.0).normalized()});
+    }
+  });
+  EXPECT_EQ(r.not_tracking, 0);
+  EXPECT_LT(r.rmse_position_m, 0.3);
+  for (const auto& map : r.maps) {
+    for (const auto& lm : map.landmarks) EXPECT_LT(lm.id, 1'000'000) << "outlier track in the local map";
+  }
+}
+
+TEST(SlidingWindow, LocalMapLandmarksAreNearTheTruePoints) {
+  const SimRun run = testing::make_sim_run(8.0, 0.5, 14);
+  SlidingWindowEstimator est(sim_config(run, 0.5));
+  const RunResult r = run_estimator(est, run);
+  ASSERT_FALSE(r.maps.empty());
+  const auto& last = r.maps.back();
+  ASSERT_GT(last.landmarks.size(), 20u);
+  std::vector<double> errors;
+  for (const auto& lm : last.landmarks) {
+    EXPECT_GE(lm.quality, 0.0);
+    EXPECT_LE(lm.quality, 1.0);
+    errors.push_back((lm.p_L - run.points.at(static_cast<std::size_t>(lm.id))).norm());
+  }
+  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+  // Points 15-40 m away, 0.5 px noise, a few metres of baseline: the median error is well below a metre.
+  EXPECT_LT(errors[errors.size() / 2], 1.0);
+}
+
+TEST(SlidingWindow, ReportsInitializingWithoutRestAndRejectsBadInput) {
+  const SimRun run = testing::make_sim_run(7.0, 0.5, 15);
+  SlidingWindowConfig c = sim_config(run, 0.5);
+  SlidingWindowEstimator est(c);
+  std::size_t imu_next = 0;
+  FrameEstimate last;
+  for (const auto& f : run.frames) {
+    while (imu_next < run.imu.size() && run.imu[imu_next].stamp_ns <= f.stamp_ns) est.add_imu(run.imu[imu_next++]);
+    last = est.add_frame(f.stamp_ns, f.features);
+    EXPECT_EQ(last.status, EstimatorStatus::kInitializing);  // the analytic flight never rests
+  }
+  EXPECT_TRUE(last.init_timed_out);
+  EXPECT_THROW(est.add_frame(run.frames.back().stamp_ns, {}), InputError);
+  EXPECT_THROW(est.add_imu(run.imu.front()), InputError);
+  c.window_keyframes = 1;
+  EXPECT_THROW(SlidingWindowEstimator{c}, InputError);
+}
+
+}  // namespace
+}  // namespace twinslam::estimator
