@@ -1,5 +1,6 @@
 // Measures the tracking frontend on rendered city-loops images against the simulator's truth (the issue 6
-// acceptance figures): bench_tracking_sim [t0_s] [frames]. Not a test: it prints the figures.
+// acceptance figures): bench_tracking_sim [t0_s] [frames]; NOISE=<grey levels> sets the sensor noise (default 2).
+// Not a test: it prints the figures.
 // each track's first pixel is cast into the world to its true 3D point, which is projected into every later
 // frame; a tracked pixel more than 2 px from that projection is a wrong track.
 #include <algorithm>
@@ -23,7 +24,9 @@ int main(int argc, char** argv) {
   const sim::FlightTrajectory flight = sim::make_flight_trajectory(scenario, city.hints);
   const CameraConfig cam_cfg = sim::sim_camera_config(scenario);
   const std::shared_ptr<const CameraModel> camera(make_camera(cam_cfg.intrinsics));
-  const sim::Renderer renderer(city.mesh);
+  sim::RenderConfig rcfg;
+  if (const char* n = std::getenv("NOISE")) rcfg.noise_sigma = std::atof(n);
+  const sim::Renderer renderer(city.mesh, rcfg);
   tracking::Frontend frontend(camera);
 
   struct Track {
