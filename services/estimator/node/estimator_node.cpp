@@ -1,12 +1,174 @@
 #include "estimator_node.hpp"
 
-namespace twinslam::estimator {
+#include <spdlog/spdlog.h>
 
-void wire_estimator_inputs(dds::Node& node, dds::Counters& counters) {
-  node.subscribe<msg::FeatureFrame>(dds::topics::kFeatures, [&counters](const msg::FeatureFrame&) { counters.add("features_in"); });
-  node.subscribe<msg::Imu>(dds::topics::kImu, [&counters](const msg::Imu&) { counters.add("imu_in"); });
-  node.subscribe<msg::GnssFix>(dds::topics::kGnss, [&counters](const msg::GnssFix&) { counters.add("gnss_in"); });
-  node.subscribe<msg::Registration>(dds::topics::kRegistration, [&counters](const msg::Registration&) { counters.add("registrations_in"); });
+#include "twinslam/core/error.hpp"
+
+namespace twinslam::estimator {
+namespace {
+using Clock = std::chrono::steady_clock;
+
+msg::Vec3 to_msg(const Eigen::Vector3d& v) {
+  msg::Vec3 m;
+  m.x(v.x());
+  m.y(v.y());
+  m.z(v.z());
+  return m;
+}
+
+msg::Pose to_msg(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  msg::Pose m;
+  m.q().w(q.w());
+  m.q().x(q.x());
+  m.q().y(q.y());
+  m.q().z(q.z());
+  m.p(to_msg(T.translation()));
+  return m;
+}
+
+msg::OdometryStatus to_msg(EstimatorStatus s) {
+  switch (s) {
+    case EstimatorStatus::kTracking: return msg::ODOM_TRACKING;
+    case EstimatorStatus::kReinitializing: return msg::ODOM_REINITIALIZING;
+    case EstimatorStatus::kInitializing: break;
+  }
+  return msg::ODOM_INITIALIZING;
+}
+
+}  // namespace
+
+EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, EstimatorNodeOptions options)
+    : node_(node),
+      counters_(counters),
+      estimator_(options.estimator),
+      imu_wait_(options.imu_wait),
+      odometry_(node.writer<msg::Odometry>(dds::topics::kOdometry)),
+      local_map_(node.writer<msg::LocalMap>(dds::topics::kLocalMap)),
+      ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)) {
+  thread_ = std::thread([this] { worker(); });
+  node.subscribe<msg::Imu>(dds::topics::kImu, [this](const msg::Imu& m) {
+    if (m.vehicle_id() != node_.config().vehicle_id) return;
+    counters_.add("imu_in");
+    std::lock_guard lock(mutex_);
+    if (m.stamp_ns() <= last_imu_ns_) {
+      counters_.add("imu_rejected");  // duplicate or out of order: the estimator needs increasing stamps
+      return;
+    }
+    last_imu_ns_ = m.stamp_ns();
+    const auto& w = m.gyro_radps();
+    const auto& a = m.accel_mps2();
+    imu_.push_back({m.stamp_ns(), Eigen::Vector3d(w.x(), w.y(), w.z()), Eigen::Vector3d(a.x(), a.y(), a.z())});
+    wake_.notify_one();
+  });
+  node.subscribe<msg::FeatureFrame>(dds::topics::kFeatures, [this](const msg::FeatureFrame& m) {
+    if (m.vehicle_id() != node_.config().vehicle_id) return;
+    counters_.add("features_in");
+    std::lock_guard lock(mutex_);
+    pending_.push_back({std::make_shared<msg::FeatureFrame>(m), Clock::now()});
+    wake_.notify_one();
+  });
+}
+
+EstimatorNode::~EstimatorNode() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  thread_.join();
+}
+
+void EstimatorNode::worker() {
+  std::unique_lock lock(mutex_);
+  while (!stop_) {
+    if (pending_.empty()) {
+      wake_.wait(lock);
+      continue;
+    }
+    const auto& front = pending_.front();
+    const bool imu_covers = last_imu_ns_ >= front.frame->stamp_ns();
+    if (!imu_covers && Clock::now() - front.arrived < imu_wait_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(10));
+      continue;
+    }
+    const auto frame = front.frame;
+    pending_.pop_front();
+    std::vector<ImuSample> imu;
+    imu.swap(imu_);
+    lock.unlock();
+    for (const auto& s : imu) {
+      try {
+        estimator_.add_imu(s);
+      } catch (const InputError& e) {
+        counters_.add("imu_rejected");
+        spdlog::warn("imu: {}", e.what());
+      }
+    }
+    process(*frame);
+    lock.lock();
+  }
+}
+
+void EstimatorNode::process(const msg::FeatureFrame& m) {
+  std::vector<FeatureBearing> features;
+  features.reserve(m.features().size());
+  for (const auto& f : m.features()) {
+    const Eigen::Vector3d b(f.bearing_C().x(), f.bearing_C().y(), f.bearing_C().z());
+    if (b.allFinite() && b.norm() > 0.5) features.push_back({static_cast<std::int64_t>(f.id()), b.normalized()});
+  }
+  try {
+    const FrameEstimate e = estimator_.add_frame(m.stamp_ns(), features);
+    msg::Odometry odom;
+    odom.vehicle_id(m.vehicle_id());
+    odom.stamp_ns(m.stamp_ns());
+    odom.seq(odom_seq_++);
+    odom.status(to_msg(e.status));
+    odom.T_LB(to_msg(e.T_LB));
+    odom.T_WL(to_msg(Eigen::Isometry3d::Identity()));  // aligned by a later issue (registration / GNSS)
+    odom.T_WB(to_msg(e.T_LB));
+    odom.v_L(to_msg(e.v_L));
+    odom.bias_gyro(to_msg(e.bias.gyro));
+    odom.bias_accel(to_msg(e.bias.accel));
+    odom.estimator_ms(e.estimator_ms);
+    odometry_.publish(odom);
+    counters_.add("odometry_out");
+    if (e.init_timed_out && counters_.get("init_timeout_reported") == 0) {
+      counters_.add("init_timeout_reported");
+      spdlog::warn("no rest seen within the initialization timeout; motion-based initialization is not implemented");
+    }
+    if (const auto& map = estimator_.local_map()) {
+      msg::LocalMap lm;
+      lm.vehicle_id(m.vehicle_id());
+      lm.keyframe_stamp_ns(map->keyframe_stamp_ns);
+      lm.seq(map_seq_++);
+      lm.T_LB(to_msg(map->T_LB));
+      lm.T_WL(to_msg(Eigen::Isometry3d::Identity()));
+      lm.landmarks().reserve(map->landmarks.size());
+      for (const auto& l : map->landmarks) {
+        msg::Landmark ml;
+        ml.id(static_cast<unsigned long long>(l.id));
+        ml.p_L(to_msg(l.p_L));
+        ml.quality(static_cast<float>(l.quality));
+        lm.landmarks().push_back(ml);
+      }
+      local_map_.publish(lm);
+      counters_.add("local_maps_out");
+    }
+  } catch (const InputError& e) {
+    counters_.add("frames_rejected");
+    spdlog::warn("feature frame {}: {}", m.stamp_ns(), e.what());
+  } catch (const std::exception& e) {
+    // An internal failure on one frame must not stop the service (nor lockstep replay, which waits for the ack).
+    counters_.add("frames_failed");
+    spdlog::error("feature frame {}: estimator failed: {}", m.stamp_ns(), e.what());
+  }
+  msg::FrameAck ack;
+  ack.vehicle_id(m.vehicle_id());
+  ack.service("estimator");
+  ack.stamp_ns(m.stamp_ns());
+  ack.seq(m.seq());
+  ack_.publish(ack);
 }
 
 }  // namespace twinslam::estimator
