@@ -59,7 +59,7 @@ TEST(CliErrors, UnknownParticipantProfile) {
 }
 
 TEST(CliErrors, MissingQosFile) {
-  const auto r = test::run_process({test::bin("twinslam-estimator"), "--qos", "/nonexistent/qos.xml"});
+  const auto r = test::run_process({test::bin("twinslam-tiles"), "--qos", "/nonexistent/qos.xml"});
   expect_bad_input(r, {"/nonexistent/qos.xml", "QoS profile file not found"});
 }
 
