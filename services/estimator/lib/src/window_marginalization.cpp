@@ -2,6 +2,7 @@
 #include <ceres/cost_function.h>
 
 #include "twinslam/estimator/imu_factor.hpp"
+#include "twinslam/estimator/reprojection_factor.hpp"
 #include "twinslam/estimator/sliding_window_state.hpp"
 #include "twinslam/estimator/state_prior.hpp"
 
@@ -12,7 +13,45 @@ StatePriorSigmas first_prior_sigmas(const SlidingWindowConfig& c);  // window_so
 void marginalize_oldest(WindowState& s) {
   WindowFrame& k0 = *s.frames[0];
   WindowFrame& k1 = *s.frames[1];
-  // 1. Re-anchor the landmarks of k0 in the next frame observing them (landmark.hpp); drop those nobody else sees.
+  const Eigen::Vector3d g_L(0, 0, -s.config.gravity_mps2);
+  // 1. Schur complement of k0's state and of the inverse depths anchored in k0 (every landmark k0 sees is anchored
+  // there: anchors are the first observing keyframe) over the factors touching them: the IMU factor k0 -> k1, the
+  // landmarks' reprojection factors, the previous prior and the initial-state prior (VINS-Mono, Sec. VI).
+  Marginalizer m(s.config.marginalization);
+  ImuFactor imu(k1.imu_from_prev, g_L);
+  m.add_factor(&imu, nullptr, {k0.pose.data(), k0.speed_bias.data(), k1.pose.data(), k1.speed_bias.data()});
+  std::unique_ptr<ceres::CostFunction> pose_prior, sb_prior;
+  if (s.first_prior_active) {
+    pose_prior.reset(new_pose_prior(s.first_prior_state, first_prior_sigmas(s.config)));
+    sb_prior.reset(new_speed_bias_prior(s.first_prior_state, first_prior_sigmas(s.config)));
+    m.add_factor(pose_prior.get(), nullptr, {k0.pose.data()});
+    m.add_factor(sb_prior.get(), nullptr, {k0.speed_bias.data()});
+  }
+  if (s.prior) m.add_factor(s.prior.get(), nullptr, s.prior->parameter_blocks());
+  std::vector<std::unique_ptr<ReprojectionFactor>> visual;
+  std::unique_ptr<ceres::LossFunction> loss(new_reprojection_loss(s.config.reprojection_noise()));
+  const double sqrt_info = s.config.reprojection_noise().sqrt_information();
+  for (auto& [id, lm] : s.landmarks) {
+    if (lm.lm.anchor_keyframe != k0.id) continue;
+    bool any = false;
+    for (std::size_t k = 1; k < s.frames.size(); ++k) {
+      WindowFrame& f = *s.frames[k];
+      const auto b = f.bearings.find(id);
+      if (b == f.bearings.end()) continue;
+      visual.push_back(std::make_unique<ReprojectionFactor>(lm.lm.f_Ca, b->second, s.config.T_BC, sqrt_info));
+      m.add_factor(visual.back().get(), loss.get(), {k0.pose.data(), f.pose.data(), &lm.rho});
+      any = true;
+    }
+    if (any) m.marginalize_block(&lm.rho);
+  }
+  m.marginalize_block(k0.pose.data());
+  m.marginalize_block(k0.speed_bias.data());
+  s.prior = m.marginalize();
+  s.first_prior_active = false;
+
+  // 2. Re-anchor those landmarks in the next keyframe observing them (landmark.hpp), so their tracks keep constraining
+  // the window; drop those nobody else sees. As in VINS-Mono, their later observations are then used again next to
+  // the prior that already holds the earlier ones (a slight overconfidence accepted for keeping the landmarks).
   for (auto it = s.landmarks.begin(); it != s.landmarks.end();) {
     InverseDepthLandmark& lm = it->second.lm;
     bool keep = true;
@@ -33,26 +72,6 @@ void marginalize_oldest(WindowState& s) {
     }
     it = keep ? std::next(it) : s.landmarks.erase(it);
   }
-  // 2. Schur complement of k0's state over the factors touching it: the IMU factor k0 -> k1, the previous prior and
-  // the initial-state prior. k0's visual observations are dropped rather than marginalized, which keeps the prior
-  // free of landmark blocks (landmarks come and go every frame); their information on k1.. is lost (a VINS-Mono-style
-  // marginalization of the re-anchored landmarks' k0 terms is a possible refinement).
-  const Eigen::Vector3d g_L(0, 0, -s.config.gravity_mps2);
-  Marginalizer m(s.config.marginalization);
-  ImuFactor imu(k1.imu_from_prev, g_L);
-  m.add_factor(&imu, nullptr, {k0.pose.data(), k0.speed_bias.data(), k1.pose.data(), k1.speed_bias.data()});
-  std::unique_ptr<ceres::CostFunction> pose_prior, sb_prior;
-  if (s.first_prior_active) {
-    pose_prior.reset(new_pose_prior(s.first_prior_state, first_prior_sigmas(s.config)));
-    sb_prior.reset(new_speed_bias_prior(s.first_prior_state, first_prior_sigmas(s.config)));
-    m.add_factor(pose_prior.get(), nullptr, {k0.pose.data()});
-    m.add_factor(sb_prior.get(), nullptr, {k0.speed_bias.data()});
-  }
-  if (s.prior) m.add_factor(s.prior.get(), nullptr, s.prior->parameter_blocks());
-  m.marginalize_block(k0.pose.data());
-  m.marginalize_block(k0.speed_bias.data());
-  s.prior = m.marginalize();
-  s.first_prior_active = false;
   k1.imu_from_prev.reset();
   s.frames.pop_front();
 }
