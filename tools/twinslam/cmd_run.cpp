@@ -14,6 +14,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "monitor.hpp"
+#include "run_pipeline.hpp"
 #include "run_record.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
@@ -26,13 +27,6 @@ namespace twinslam::cli {
 namespace fs = std::filesystem;
 
 namespace {
-struct RunOptions {
-  std::string dataset, mode = "vio", out, vehicle = "uav0";
-  bool realtime = false, max = false, features = false;
-  int domain = -1;
-  double start_timeout_s = 60;
-};
-
 bool uses_twin(const std::string& mode) { return mode.rfind("vio-twin", 0) == 0; }
 
 Eigen::Isometry3d to_iso(const msg::Pose& p) {
@@ -70,6 +64,8 @@ int pick_domain(int requested) {
   if (const char* env = std::getenv("TWINSLAM_DOMAIN"); env != nullptr && *env != '\0') return std::atoi(env);
   return 100 + static_cast<int>(getpid() % 100);  // private per run: parallel runs and tests stay apart
 }
+
+}  // namespace
 
 int run_pipeline(const RunOptions& o) {
   const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
@@ -111,7 +107,11 @@ int run_pipeline(const RunOptions& o) {
   const std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", std::to_string(domain)}};
   for (const auto& s : services) {
     std::vector<std::string> args{"--vehicle", o.vehicle, replay};
-    if (s == "tracking") args.insert(args.end(), {"--camera", (dataset.root / "mav0/cam0/sensor.yaml").string()});
+    const std::string camera = (dataset.root / "mav0/cam0/sensor.yaml").string();
+    if (s == "tracking") args.insert(args.end(), {"--camera", camera});
+    if (s == "estimator") {
+      args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
+    }
     supervisor.start({s, "twinslam-" + s, args, env, {}, false});
   }
   const auto ready_deadline = std::chrono::steady_clock::now() +
@@ -125,15 +125,15 @@ int run_pipeline(const RunOptions& o) {
   // Readers ingest must see before its first sample: every subscriber of each stream plus this recorder.
   // Camera frames (images, or feature frames with --features) go to tracking or to the estimator.
   const int imu_readers = o.features ? 2 : 3;
-  const int gnss_readers = 2 + (uses_twin(o.mode) ? 1 : 0);
+  // GNSS: this recorder, and tiles in twin modes (the estimator subscribes GNSS once it fuses it).
+  const int gnss_readers = 1 + (uses_twin(o.mode) ? 1 : 0);
   std::vector<std::string> ingest_args{"--dataset", dataset.root.string(), "--vehicle", o.vehicle, replay,
                                        "--wait-readers",
                                        "imu=" + std::to_string(imu_readers) + ",image=2,gnss=" +
                                            std::to_string(dataset.gnss.empty() ? 0 : gnss_readers)};
   if (o.features) ingest_args.push_back("--features");
-  if (!o.realtime && !o.features) {
-    ingest_args.insert(ingest_args.end(), {"--ack-from", "tracking"});
-  }
+  // Lockstep: the next frame goes out once every stage has finished the previous one.
+  if (!o.realtime) ingest_args.insert(ingest_args.end(), {"--ack-from", o.features ? "estimator" : "tracking,estimator"});
   supervisor.start({"ingest", "twinslam-ingest", ingest_args, env, {}, true});
   const auto event = supervisor.watch();
   const auto results = supervisor.stop_all();
@@ -149,8 +149,8 @@ int run_pipeline(const RunOptions& o) {
   unsigned long long frames = 0;
   for (const auto& t : monitor.stats()) {
     if (t.name != dds::topics::kHeartbeat.name) messages[t.name] = t.messages;
-    // Frames finished by the pipeline: acknowledged by tracking; with --features, delivered to the estimator.
-    if (t.name == (o.features ? dds::topics::kFeatures.name : dds::topics::kFrameAck.name)) frames = t.messages;
+    // Frames finished by the pipeline: those the estimator turned into a pose.
+    if (t.name == dds::topics::kOdometry.name) frames = t.messages;
   }
   const std::string status = event == process::Supervisor::Event::Shutdown ? "interrupted" : ok ? "ok" : "failed";
   nlohmann::json run{{"mode", o.mode},
@@ -167,6 +167,7 @@ int run_pipeline(const RunOptions& o) {
   record.write(out);
   std::ofstream(out / "run.json") << run.dump(2) << '\n';
 
+  if (o.quiet) return status == "failed" ? kExitInternal : kExitOk;
   std::printf("run %s: %s in %.1f s (mode %s, %s replay, domain %d)\n", out.string().c_str(), status.c_str(), wall_s,
               o.mode.c_str(), o.realtime ? "realtime" : "lockstep", domain);
   std::printf("%-28s %10s\n", "TOPIC", "MESSAGES");
@@ -178,7 +179,6 @@ int run_pipeline(const RunOptions& o) {
   }
   return status == "failed" ? kExitInternal : kExitOk;
 }
-}  // namespace
 
 void add_run_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("run", "Run the service pipeline on a dataset and write RUN/");

@@ -95,8 +95,10 @@ class IngestNode::Impl {
       if (shutdown_requested()) return false;
       if (Clock::now() > deadline) {
         throw std::runtime_error("no consumer ready within " + std::to_string(opt_.start_timeout.count()) +
-                                 " ms (matched readers: imu " + std::to_string(imu_.matched_readers()) + ", image " +
-                                 std::to_string(image_.matched_readers()) + ")");
+                                 " ms (matched readers: imu " + std::to_string(imu_.matched_readers()) + ", frames " +
+                                 std::to_string(features_ != nullptr ? features_w_.matched_readers()
+                                                                     : image_.matched_readers()) +
+                                 ", gnss " + std::to_string(gnss_.matched_readers()) + ")");
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }

@@ -1,0 +1,48 @@
+// `twinslam bench` end to end on a short simulated flight with ideal tracks: every requested mode is run and
+// evaluated, table.md has the paper's Table I rows, metrics.json the eval keys, and the plots exist. The VIO
+// estimate must be within 1 % of the path length (posyaw) — the estimator's own tests hold it to tighter bounds.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "subprocess.hpp"
+
+namespace fs = std::filesystem;
+using namespace twinslam;
+
+TEST(BenchCli, TinyFlightTableMetricsAndPlots) {
+  const fs::path data = fs::temp_directory_path() / ("twinslam_bench_data_" + std::to_string(::getpid()));
+  const fs::path out = fs::temp_directory_path() / ("twinslam_bench_out_" + std::to_string(::getpid()));
+  fs::remove_all(data);
+  fs::remove_all(out);
+  const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--duration", "15",
+                                      "--features", "--quiet", "--out", data.string()},
+                                     {}, std::chrono::seconds(240));
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto bench = test::run_process({test::bin("twinslam"), "bench", data.string(), "--out", out.string(),
+                                        "--modes", "vio", "--features"},
+                                       {}, std::chrono::seconds(300));
+  ASSERT_EQ(bench.exit_code, 0) << bench.out << bench.err;
+  std::ifstream table_in(out / "table.md");
+  std::stringstream table;
+  table << table_in.rdbuf();
+  for (const char* row : {"| ATE_p [m] |", "| ATE_R [deg] |", "| per-frame time, median [ms] |", "vio (posyaw)"}) {
+    EXPECT_NE(table.str().find(row), std::string::npos) << row << " missing in\n" << table.str();
+  }
+  std::ifstream metrics_in(out / "metrics.json");
+  const auto metrics = nlohmann::json::parse(metrics_in);
+  ASSERT_TRUE(metrics.contains("vio"));
+  const auto& vio = metrics["vio"];
+  EXPECT_EQ(vio["align"], "posyaw");
+  const double length = vio["length_m"], ate = vio["ate_pos_rmse_m"];
+  EXPECT_GT(length, 20.0);
+  EXPECT_LT(ate, 0.01 * length) << "ATE " << ate << " m on " << length << " m";
+  for (const char* png : {"trajectory_xy.png", "trajectory_xz.png", "error_position.png"}) {
+    EXPECT_TRUE(fs::exists(out / png)) << png;
+  }
+  fs::remove_all(data);
+  fs::remove_all(out);
+}

@@ -1,0 +1,120 @@
+// `twinslam bench DIR --out BENCH [--modes MODE,...]`: runs the pipeline once per mode on one dataset and compares
+// the modes like the paper's Table I: ATE_p [m], ATE_R [deg], per-frame time, registration time.
+// Modes with a world frame are evaluated without alignment; `vio` (local frame only) with posyaw (4-DoF).
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "run_pipeline.hpp"
+#include "twinslam/core/csv.hpp"
+#include "twinslam/core/error.hpp"
+#include "twinslam/core/main_guard.hpp"
+#include "twinslam/eval/evaluate.hpp"
+#include "twinslam/eval/plots.hpp"
+#include "twinslam/eval/report.hpp"
+#include "twinslam/eval/stats.hpp"
+#include "twinslam/trajectory/io.hpp"
+
+namespace twinslam::cli {
+namespace fs = std::filesystem;
+
+namespace {
+// Median of one column of a CSV with a header row; nullopt when there are no rows.
+std::optional<double> column_median(const fs::path& file, std::size_t columns, std::size_t col,
+                                    const std::function<bool(const CsvRow&)>& keep = {}) {
+  if (!fs::exists(file)) return std::nullopt;
+  std::vector<double> values;
+  read_csv(file, columns, [&](const CsvRow& row) {
+    if (row.line == 1) return;  // header
+    if (keep && !keep(row)) return;
+    values.push_back(parse_double(file, row, col, "value"));
+  });
+  if (values.empty()) return std::nullopt;
+  return eval::quantile(values, 0.5);
+}
+
+std::string cell(const std::optional<double>& v, const char* fmt) {
+  if (!v) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), fmt, *v);
+  return buf;
+}
+}  // namespace
+
+void add_bench_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("bench", "Run and evaluate every mode on a dataset; write BENCH/table.md");
+  struct Options {
+    std::string dataset, out;
+    std::vector<std::string> modes{"vio", "vio-gnss", "vio-twin", "vio-twin-gnss"};
+    bool features = false;
+  };
+  auto o = std::make_shared<Options>();
+  cmd->add_option("dataset", o->dataset, "Dataset folder with ground truth")->required();
+  cmd->add_option("--out", o->out, "Output folder BENCH")->required();
+  cmd->add_option("--modes", o->modes, "Modes to compare")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"vio", "vio-gnss", "vio-twin", "vio-twin-gnss"}));
+  cmd->add_flag("--features", o->features, "Feed the dataset's ideal feature tracks instead of images");
+  cmd->callback([o, &exit_code] {
+    const Trajectory gt = read_dataset_groundtruth(o->dataset);
+    fs::create_directories(o->out);
+    std::vector<std::string> done;
+    std::vector<eval::EvalResult> results;
+    std::map<std::string, std::pair<std::optional<double>, std::optional<double>>> times;
+    nlohmann::json metrics = nlohmann::json::object();
+    int code = kExitOk;
+    for (const auto& mode : o->modes) {
+      RunOptions run;
+      run.dataset = o->dataset;
+      run.mode = mode;
+      run.out = (fs::path(o->out) / "runs" / mode).string();
+      run.features = o->features;
+      run.quiet = true;
+      std::cerr << "bench: running " << mode << " ..." << std::endl;
+      if (run_pipeline(run) != kExitOk || !fs::exists(fs::path(run.out) / "trajectory.tum")) {
+        std::cerr << "bench: " << mode << " produced no trajectory (see " << run.out << "/logs)" << std::endl;
+        code = kExitInternal;
+        continue;
+      }
+      eval::EvalConfig cfg;
+      cfg.align = mode == "vio" ? eval::AlignMode::PosYaw : eval::AlignMode::None;
+      results.push_back(eval::evaluate(gt, read_run_trajectory(run.out), cfg));
+      done.push_back(mode);
+      const fs::path timing = fs::path(run.out) / "timing.csv";
+      const auto tracking = column_median(timing, 4, 1), estimator = column_median(timing, 4, 2);
+      std::optional<double> frame_ms;
+      if (tracking && estimator) frame_ms = *tracking + *estimator;
+      times[mode] = {frame_ms, column_median(fs::path(run.out) / "registrations.csv", 18, 5)};
+      metrics[mode] = eval::to_json(results.back());
+    }
+    // The table in the shape of the paper's Table I: metrics as rows, systems (modes) as columns.
+    std::ostringstream table;
+    table << "| Metric |";
+    for (const auto& m : done) table << ' ' << m << (m == "vio" ? " (posyaw)" : " (none)") << " |";
+    table << "\n|---|";
+    for (std::size_t i = 0; i < done.size(); ++i) table << "---|";
+    table << "\n| ATE_p [m] |";
+    for (const auto& r : results) table << ' ' << cell(r.ate.pos.rmse, "%.3f") << " |";
+    table << "\n| ATE_R [deg] |";
+    for (const auto& r : results) table << ' ' << cell(r.ate.rot.rmse, "%.3f") << " |";
+    table << "\n| per-frame time, median [ms] |";
+    for (const auto& m : done) table << ' ' << cell(times[m].first, "%.2f") << " |";
+    table << "\n| registration time, median [ms] |";
+    for (const auto& m : done) table << ' ' << cell(times[m].second, "%.2f") << " |";
+    table << "\n\nPath length " << cell(results.empty() ? std::nullopt : std::optional<double>(results[0].length_m), "%.1f")
+          << " m. ATE alignment in parentheses: posyaw for the local-frame VIO, none for modes with a world frame.\n";
+    std::ofstream(fs::path(o->out) / "table.md") << table.str();
+    std::ofstream(fs::path(o->out) / "metrics.json") << metrics.dump(2) << '\n';
+    std::vector<eval::PlotRun> plot_runs;
+    for (std::size_t i = 0; i < done.size(); ++i) plot_runs.push_back({done[i], &results[i]});
+    if (!plot_runs.empty()) eval::write_eval_plots(o->out, gt, plot_runs);
+    std::cout << table.str();
+    exit_code = code;
+  });
+}
+
+}  // namespace twinslam::cli

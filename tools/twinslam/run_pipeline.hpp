@@ -1,0 +1,18 @@
+#pragma once
+// `twinslam run` as a function, so `twinslam bench` can run every mode in one process.
+#include <string>
+
+namespace twinslam::cli {
+
+struct RunOptions {
+  std::string dataset, mode = "vio", out, vehicle = "uav0";
+  bool realtime = false, max = false, features = false, quiet = false;
+  int domain = -1;
+  double start_timeout_s = 60;
+};
+
+// Starts the services, replays the dataset, writes RUN/ (run.json, trajectories, timing, registrations, logs).
+// Returns the exit code (0 ok, 1 a service failed); throws InputError/UsageError for bad input.
+int run_pipeline(const RunOptions& options);
+
+}  // namespace twinslam::cli
