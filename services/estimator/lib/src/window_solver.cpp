@@ -50,32 +50,46 @@ void triangulate_new_landmarks(WindowState& s) {
   if (static_cast<int>(s.landmarks.size()) >= s.config.max_landmarks) return;
   TriangulationConfig tc = s.config.triangulation;
   tc.focal_px = s.config.focal_px;
-  const WindowFrame& newest = *s.frames.back();
-  for (const auto& [id, f_new] : newest.bearings) {
-    if (s.landmarks.count(id) != 0) continue;
+  // Candidates: tracks of the newest frame that are no landmark yet, anchored in their first keyframe. Longest tracks
+  // first: with a capped landmark count, each landmark then constrains the most keyframes (and sorting by id breaks
+  // ties, so the choice does not depend on hash order: deterministic).
+  struct Candidate {
+    std::int64_t id;
+    const WindowFrame* anchor;
     std::vector<BearingObservation> obs;
-    const WindowFrame* anchor = nullptr;
+  };
+  std::vector<Candidate> candidates;
+  for (const auto& [id, f_new] : s.frames.back()->bearings) {
+    if (s.landmarks.count(id) != 0) continue;
+    Candidate c{id, nullptr, {}};
     for (const auto& f : s.frames) {
       const auto it = f->bearings.find(id);
       if (it == f->bearings.end()) continue;
-      if (anchor == nullptr) {
+      if (c.anchor == nullptr) {
         if (!f->keyframe) break;  // anchors must be keyframes: a non-keyframe is dropped with its observations
-        anchor = f.get();
+        c.anchor = f.get();
       }
-      obs.push_back({f->T_LB(), it->second});
+      c.obs.push_back({f->T_LB(), it->second});
     }
-    if (anchor == nullptr || static_cast<int>(obs.size()) < s.config.min_observations) continue;
-    const TriangulationResult r = triangulate(tc, obs, s.config.T_BC, 0);
+    if (c.anchor != nullptr && static_cast<int>(c.obs.size()) >= s.config.min_observations) {
+      candidates.push_back(std::move(c));
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return a.obs.size() != b.obs.size() ? a.obs.size() > b.obs.size() : a.id < b.id;
+  });
+  for (const Candidate& c : candidates) {
+    const TriangulationResult r = triangulate(tc, c.obs, s.config.T_BC, 0);
     if (!r.ok()) continue;
     WindowLandmark lm;
-    lm.lm.id = id;
-    lm.lm.anchor_keyframe = anchor->id;
-    lm.lm.f_Ca = anchor->bearings.at(id);
+    lm.lm.id = c.id;
+    lm.lm.anchor_keyframe = c.anchor->id;
+    lm.lm.f_Ca = c.anchor->bearings.at(c.id);
     lm.lm.rho = r.rho;
     lm.rho = r.rho;
     lm.mean_error_px = r.max_error_px;
     lm.parallax_deg = r.parallax_deg;
-    s.landmarks.emplace(id, lm);
+    s.landmarks.emplace(c.id, lm);
     if (static_cast<int>(s.landmarks.size()) >= s.config.max_landmarks) return;
   }
 }

@@ -38,7 +38,7 @@ struct SlidingWindowConfig {
   // Landmarks and outliers.
   double outlier_threshold_px = 3.0;   // observations farther than this after a solve are removed [px]
   int min_observations = 2;            // keyframe/frame observations needed to triangulate (anchor included)
-  int max_landmarks = 300;             // triangulated landmarks kept in the window (oldest first)
+  int max_landmarks = 150;             // triangulated landmarks kept in the window (VINS-Mono tracks 150)
   // A keyframe at least this often even without parallax (hovering), so preintegration intervals stay short [s].
   double max_keyframe_interval_s = 1.0;
 
