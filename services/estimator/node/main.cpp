@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
     options.estimator.focal_px = camera.intrinsics.fu;
     options.estimator.imu = twinslam::estimator::load_imu_noise(imu_file);
     if (window > 0) options.estimator.window_keyframes = window;
+    // Lockstep replay (--max) promises repeatable trajectories (CONTRACTS.md: two runs within 1 mm); a wall-clock
+    // solver cap would make the result depend on the machine's load, so there only the iteration count bounds it.
+    if (!service.realtime) options.estimator.max_solver_time_s = 1.0;
     options.estimator.validate();
     twinslam::dds::Node node(service.node);
     twinslam::dds::Counters counters;
