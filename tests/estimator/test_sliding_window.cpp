@@ -159,3 +159,89 @@ TEST(SlidingWindow, ReportsInitializingWithoutRestAndRejectsBadInput) {
 
 }  // namespace
 }  // namespace twinslam::estimator
+
+namespace twinslam::estimator {
+namespace {
+
+// Divergence plumbing: a speed limit below the flight's speed (about 1-2 m/s) is "divergence"; the estimator resets,
+// reports kReinitializing until it is initialized again, then tracks again from the new start.
+TEST(SlidingWindow, DivergenceResetsAndReportsReinitializing) {
+  const SimRun run = testing::make_sim_run(6.0, 0.5, 16);
+  SlidingWindowConfig c = sim_config(run, 0.5);
+  c.max_speed_mps = 0.2;
+  SlidingWindowEstimator est(c);
+  std::size_t imu_next = 0;
+  est.initialize_next_frame(run.frames.front().truth);
+  std::vector<EstimatorStatus> status;
+  for (std::size_t k = 0; k < run.frames.size(); ++k) {
+    const auto& f = run.frames[k];
+    while (imu_next < run.imu.size() && run.imu[imu_next].stamp_ns <= f.stamp_ns) est.add_imu(run.imu[imu_next++]);
+    if (k == 60) est.initialize_next_frame(f.truth);
+    status.push_back(est.add_frame(f.stamp_ns, f.features).status);
+  }
+  EXPECT_EQ(status[0], EstimatorStatus::kTracking);           // the start itself has no solve yet
+  EXPECT_EQ(status[1], EstimatorStatus::kReinitializing);     // the first solve sees |v| > 0.2 m/s
+  EXPECT_EQ(status[30], EstimatorStatus::kReinitializing);    // stays so: the flight never rests
+  EXPECT_EQ(status[60], EstimatorStatus::kTracking);          // initialized again
+  EXPECT_EQ(est.keyframe_count(), 0u);                         // ...and reset again by the next solve
+}
+
+}  // namespace
+}  // namespace twinslam::estimator
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/problem.h>
+
+namespace twinslam::estimator {
+namespace {
+
+// A GNSS-like position factor on the newest frame, as a later factor type would add it through the extension point.
+struct PositionFactor {
+  Eigen::Vector3d target;
+  double weight;
+  std::size_t* evaluations;
+  template <class T>
+  bool operator()(const T* pose, T* r) const {
+    ++*evaluations;
+    for (int k = 0; k < 3; ++k) r[k] = (pose[k] - T(target[k])) * T(weight);
+    return true;
+  }
+};
+
+class PositionProvider final : public WindowFactorProvider {
+ public:
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  std::size_t calls = 0, last_window_size = 0, evaluations = 0;
+  void add_factors(ceres::Problem& problem, const WindowBlocks& blocks) override {
+    ++calls;
+    last_window_size = blocks.pose.size();
+    cost_ = std::make_unique<ceres::AutoDiffCostFunction<PositionFactor, 3, kPoseSize>>(new PositionFactor{target, 1e2, &evaluations});
+    problem.AddResidualBlock(cost_.get(), nullptr, blocks.pose.back());
+  }
+
+ private:
+  std::unique_ptr<ceres::CostFunction> cost_;  // the problem does not own it (window_factor_provider.hpp)
+};
+
+TEST(SlidingWindow, ExtraFactorProvidersJoinTheProblem) {
+  const SimRun run = testing::make_sim_run(3.0, 0.5, 17);
+  SlidingWindowEstimator est(sim_config(run, 0.5));
+  auto provider = std::make_shared<PositionProvider>();
+  est.add_factor_provider(provider);
+  est.initialize_next_frame(run.frames.front().truth);
+  std::size_t imu_next = 0;
+  FrameEstimate last;
+  for (const auto& f : run.frames) {
+    while (imu_next < run.imu.size() && run.imu[imu_next].stamp_ns <= f.stamp_ns) est.add_imu(run.imu[imu_next++]);
+    // A GNSS-like fix of the newest frame at its true position (1 cm sigma).
+    provider->target = f.truth.p_L;
+    last = est.add_frame(f.stamp_ns, f.features);
+  }
+  EXPECT_EQ(provider->calls, run.frames.size() - 1);  // every solve (the first frame only starts the window)
+  EXPECT_EQ(provider->last_window_size, est.keyframe_count() + (last.keyframe ? 0 : 1));
+  EXPECT_GT(provider->evaluations, provider->calls);  // the solver evaluated the factors
+  EXPECT_LT((last.T_LB.translation() - provider->target).norm(), 0.03);
+}
+
+}  // namespace
+}  // namespace twinslam::estimator
