@@ -16,6 +16,7 @@ void SlidingWindowConfig::validate() const {
   if (min_observations < 2) throw InputError("sliding_window.min_observations: must be >= 2");
   if (max_landmarks < 1) throw InputError("sliding_window.max_landmarks: must be >= 1");
   positive(max_solver_time_s, "max_solver_time_s");
+  positive(solver_function_tolerance, "solver_function_tolerance");
   positive(focal_px, "focal_px");
   positive(pixel_sigma, "pixel_sigma");
   positive(gravity_mps2, "gravity_mps2");

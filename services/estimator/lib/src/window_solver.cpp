@@ -154,6 +154,7 @@ SolveSummary solve_window(WindowState& s) {
   so.max_num_iterations = c.max_solver_iterations;
   so.max_solver_time_in_seconds = c.max_solver_time_s;
   so.num_threads = 1;
+  so.function_tolerance = c.solver_function_tolerance;
   so.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);

@@ -15,6 +15,10 @@ struct SlidingWindowConfig {
   int window_keyframes = 8;            // keyframes kept before the oldest is marginalized
   int max_solver_iterations = 8;       // Levenberg-Marquardt iterations per frame
   double max_solver_time_s = 0.02;     // solver time cap per frame [s]
+  // Relative cost decrease below which a solve stops. The window starts from the previous solution plus IMU
+  // prediction, so Ceres' default 1e-6 spent most iterations on changes far below the noise: 1e-4 cut the median time
+  // per frame about 3x on the simulated flight at the same accuracy (test_sliding_window).
+  double solver_function_tolerance = 1e-4;
   double focal_px = 460.0;             // fu of the camera: px per radian, converts angles to px [px/rad]
   double pixel_sigma = 1.0;            // feature noise [px]
   ImuNoise imu;                        // continuous-time IMU noise (EuRoC imu0/sensor.yaml keys)
