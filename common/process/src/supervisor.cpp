@@ -9,6 +9,7 @@
 #include <iostream>
 #include <mutex>
 #include <poll.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -166,10 +167,14 @@ void Supervisor::start(const ProcessSpec& spec) {
   for (auto& e : env_s) envp.push_back(e.data());
   envp.push_back(nullptr);
 
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
   if (pid == 0) {
     setpgid(0, 0);  // own process group: terminal Ctrl-C goes to the supervisor only
+    // If the supervisor dies without stopping us (SIGKILL, crash), stop cleanly instead of living on as an orphan.
+    prctl(PR_SET_PDEATHSIG, SIGINT);
+    if (getppid() != parent) _exit(127);  // the supervisor died before prctl took effect
     dup2(out[1], STDOUT_FILENO);
     dup2(err[1], STDERR_FILENO);
     if (!spec.cwd.empty() && chdir(spec.cwd.c_str()) != 0) _exit(127);
