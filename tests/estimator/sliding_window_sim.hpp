@@ -36,11 +36,10 @@ inline Eigen::Vector3d noisy_bearing(const Eigen::Vector3d& f, double sigma_rad,
 // duration_s of flight; landmarks 15-30 m from the middle of the flight (the trajectory stays well inside), seen within
 // 45 deg of the optical axis and up to 40 m.
 inline SimRun make_sim_run(double duration_s, double pixel_sigma, unsigned seed, int landmarks = 2000,
-                           double focal_px = 460.0) {
+                           double focal_px = 460.0, const AnalyticTrajectory& traj = {}) {
   SimRun run;
   run.bias.gyro << 0.003, -0.002, 0.001;
   run.bias.accel << 0.05, -0.04, 0.06;
-  const AnalyticTrajectory traj;
   const auto t_end = static_cast<std::int64_t>(duration_s * 1e9);
   run.imu = simulate_imu(traj, 0, t_end + 200'000'000, 200.0, run.bias);
   std::mt19937 rng(seed);

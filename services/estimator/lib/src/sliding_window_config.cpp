@@ -32,6 +32,10 @@ void SlidingWindowConfig::validate() const {
   positive(outlier_threshold_px, "outlier_threshold_px");
   positive(max_keyframe_interval_s, "max_keyframe_interval_s");
   positive(max_speed_mps, "max_speed_mps");
+  positive(zero_velocity_max_motion_px, "zero_velocity_max_motion_px");
+  positive(zero_velocity_min_interval_s, "zero_velocity_min_interval_s");
+  positive(zero_velocity_sigma_mps, "zero_velocity_sigma_mps");
+  if (zero_velocity_min_tracks < 1) throw InputError("sliding_window.zero_velocity_min_tracks: must be >= 1");
   positive(max_gyro_bias_radps, "max_gyro_bias_radps");
   positive(max_accel_bias_mps2, "max_accel_bias_mps2");
   positive(max_median_reprojection_px, "max_median_reprojection_px");

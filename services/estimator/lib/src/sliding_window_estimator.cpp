@@ -134,6 +134,23 @@ bool is_keyframe(const WindowState& s, const WindowFrame& kf, const WindowFrame&
   return decide_keyframe(kc, in).is_keyframe;
 }
 
+// Zero-velocity detection against the last keyframe (config: zero_velocity_*): mean raw bearing change [px].
+bool is_stationary(const WindowState& s, const WindowFrame& kf, const WindowFrame& cur) {
+  const auto& c = s.config;
+  if (!c.zero_velocity || 1e-9 * static_cast<double>(cur.stamp_ns - kf.stamp_ns) < c.zero_velocity_min_interval_s) {
+    return false;
+  }
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& [id, f_Cc] : cur.bearings) {
+    const auto it = kf.bearings.find(id);
+    if (it == kf.bearings.end()) continue;
+    sum += std::atan2(f_Cc.cross(it->second).norm(), f_Cc.dot(it->second));
+    ++n;
+  }
+  return n >= c.zero_velocity_min_tracks && c.focal_px * sum / n < c.zero_velocity_max_motion_px;
+}
+
 // Repropagates the preintegrations whose linearization bias is far from the current estimate (Forster eq. 44 holds
 // only near it).
 void repropagate(WindowState& s) {
@@ -255,6 +272,7 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
   predict(kf, *cur->imu_from_prev, s.config.gravity_mps2, *cur);
   for (const auto& b : features) cur->bearings[b.id] = b.f_C;
   cur->keyframe = is_keyframe(s, kf, *cur);
+  cur->stationary = is_stationary(s, kf, *cur);
   s.frames.push_back(std::move(cur));
 
   triangulate_new_landmarks(s);

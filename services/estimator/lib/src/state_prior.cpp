@@ -35,7 +35,20 @@ struct SpeedBiasPriorResidual {
   }
 };
 
+struct ZeroVelocityResidual {
+  double w;
+  template <class T>
+  bool operator()(const T* sb, T* r) const {
+    for (int k = 0; k < 3; ++k) r[k] = sb[k] * T(w);
+    return true;
+  }
+};
+
 }  // namespace
+
+ceres::CostFunction* new_zero_velocity_factor(double sigma_mps) {
+  return new ceres::AutoDiffCostFunction<ZeroVelocityResidual, 3, kSpeedBiasSize>(new ZeroVelocityResidual{1.0 / sigma_mps});
+}
 
 ceres::CostFunction* new_pose_prior(const ImuState& prior, const StatePriorSigmas& s) {
   auto* f = new PosePriorResidual{prior.p_L, prior.q_LB.normalized().inverse(),

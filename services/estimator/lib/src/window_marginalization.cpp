@@ -28,6 +28,11 @@ void marginalize_oldest(WindowState& s) {
     m.add_factor(sb_prior.get(), nullptr, {k0.speed_bias.data()});
   }
   if (s.prior) m.add_factor(s.prior.get(), nullptr, s.prior->parameter_blocks());
+  std::unique_ptr<ceres::CostFunction> zero_velocity;
+  if (k0.stationary) {
+    zero_velocity.reset(new_zero_velocity_factor(s.config.zero_velocity_sigma_mps));
+    m.add_factor(zero_velocity.get(), nullptr, {k0.speed_bias.data()});
+  }
   std::vector<std::unique_ptr<ReprojectionFactor>> visual;
   std::unique_ptr<ceres::LossFunction> loss(new_reprojection_loss(s.config.reprojection_noise()));
   const double sqrt_info = s.config.reprojection_noise().sqrt_information();

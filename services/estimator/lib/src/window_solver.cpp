@@ -117,6 +117,10 @@ SolveSummary solve_window(WindowState& s) {
       problem.AddResidualBlock(owned.back().get(), nullptr, p.pose.data(), p.speed_bias.data(), f.pose.data(),
                                f.speed_bias.data());
     }
+    if (f.stationary) {
+      owned.emplace_back(new_zero_velocity_factor(c.zero_velocity_sigma_mps));
+      problem.AddResidualBlock(owned.back().get(), nullptr, f.speed_bias.data());
+    }
     blocks.stamps_ns.push_back(f.stamp_ns);
     blocks.pose.push_back(f.pose.data());
     blocks.speed_bias.push_back(f.speed_bias.data());

@@ -18,6 +18,7 @@ struct WindowFrame {
   std::int64_t id = 0;
   std::int64_t stamp_ns = 0;
   bool keyframe = false;
+  bool stationary = false;  // features stood still since the last keyframe: zero-velocity factor (see config)
   std::array<double, kPoseSize> pose{};             // Ceres block [p_L, q_LB xyzw]
   std::array<double, kSpeedBiasSize> speed_bias{};  // Ceres block [v_L, b_g, b_a]
   std::unordered_map<std::int64_t, Eigen::Vector3d> bearings;  // feature id -> f_C

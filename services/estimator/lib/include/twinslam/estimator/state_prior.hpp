@@ -23,4 +23,7 @@ ceres::CostFunction* new_pose_prior(const ImuState& prior, const StatePriorSigma
 // Residual (9): whitened [v_L - v0, b_g - bg0, b_a - ba0]. Block: speed_bias [9].
 ceres::CostFunction* new_speed_bias_prior(const ImuState& prior, const StatePriorSigmas& sigmas);
 
+// Residual (3): v_L / sigma_mps, the zero-velocity update of a frame at rest. Block: speed_bias [9].
+ceres::CostFunction* new_zero_velocity_factor(double sigma_mps);
+
 }  // namespace twinslam::estimator
