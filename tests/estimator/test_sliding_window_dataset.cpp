@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 // The simulator is the `twinslam` executable of a full build: this build's, else the main build's.
 fs::path find_twinslam() {
-  for (const fs::path p : {fs::path(TWINSLAM_BIN_DIR) / "twinslam", fs::path(TWINSLAM_SOURCE_DIR) / "build/bin/twinslam"}) {
+  for (const fs::path& p : {fs::path(TWINSLAM_BIN_DIR) / "twinslam", fs::path(TWINSLAM_SOURCE_DIR) / "build/bin/twinslam"}) {
     if (fs::exists(p)) return p;
   }
   return {};
