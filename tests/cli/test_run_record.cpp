@@ -26,6 +26,10 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
     o.estimator_ms = 4.0;
     rec.odometry(o, 100.0 * k + 7.5);
   }
+  cli::OdometryRecord init;  // an initializing placeholder after the estimates: timing only
+  init.stamp_ns = 2'000'000'000LL;
+  init.estimated = false;
+  rec.odometry(init, 1000.0);
   cli::RegistrationRecord r;
   r.stamp_ns = 1'100'000'000LL;
   r.accepted = true;
@@ -49,11 +53,11 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   std::size_t rows = 0;
   read_csv(dir / "timing.csv", 4, [&](const CsvRow& row) {
     if (row.line == 1) return;  // header
+    if (rows++ == 5) return;  // the placeholder frame
     EXPECT_DOUBLE_EQ(parse_double(dir / "timing.csv", row, 1, "tracking_ms"), 2.5);
     EXPECT_DOUBLE_EQ(parse_double(dir / "timing.csv", row, 3, "end_to_end_ms"), 7.5);
-    ++rows;
   });
-  EXPECT_EQ(rows, 5u);
+  EXPECT_EQ(rows, 6u);  // every frame has a timing row, estimated or not
   std::size_t regs = 0;
   read_csv(dir / "registrations.csv", 18, [&](const CsvRow& row) {
     if (row.line == 1) return;

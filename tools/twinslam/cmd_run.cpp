@@ -37,7 +37,8 @@ Eigen::Isometry3d to_iso(const msg::Pose& p) {
 }
 
 OdometryRecord to_record(const msg::Odometry& m) {
-  return {m.stamp_ns(), to_iso(m.T_WB()), to_iso(m.T_LB()), m.estimator_ms()};
+  const bool estimated = m.status() == msg::ODOM_TRACKING || m.status() == msg::ODOM_ALIGNED;
+  return {m.stamp_ns(), to_iso(m.T_WB()), to_iso(m.T_LB()), m.estimator_ms(), estimated};
 }
 
 RegistrationRecord to_record(const msg::Registration& m) {

@@ -1,5 +1,6 @@
 #include "run_record.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -38,9 +39,12 @@ std::size_t RunRecord::odometry_count() const {
 std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path& dir) const {
   std::lock_guard lock(mutex_);
   std::vector<std::filesystem::path> written;
-  if (!odometry_.empty()) {
+  const bool any_estimate =
+      std::any_of(odometry_.begin(), odometry_.end(), [](const auto& entry) { return entry.first.estimated; });
+  if (any_estimate) {
     Trajectory world, local;
     for (const auto& [o, _] : odometry_) {
+      if (!o.estimated) continue;
       // A pose repeated for the same stamp (re-publication) keeps the first: TUM stamps must increase.
       if (!world.poses.empty() && o.stamp_ns <= world.poses.back().stamp_ns) continue;
       world.poses.push_back({o.stamp_ns, o.T_WB});

@@ -17,6 +17,7 @@ struct OdometryRecord {
   Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_LB = Eigen::Isometry3d::Identity();
   double estimator_ms = 0;
+  bool estimated = true;  // false while initializing: the pose is a placeholder, kept out of the trajectories
 };
 
 struct RegistrationRecord {
