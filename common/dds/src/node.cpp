@@ -107,6 +107,11 @@ Node::~Node() {
   listeners_.clear();
 }
 
+void Node::close_readers() {
+  std::lock_guard lock(mutex_);
+  if (subscriber_ != nullptr) subscriber_->delete_contained_entities();
+}
+
 fdds::Topic* Node::topic(const TopicSpec& spec, fdds::TypeSupport type) {
   for (auto* t : topics_) {
     if (t->get_name() == spec.name) return t;

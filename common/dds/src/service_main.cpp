@@ -42,11 +42,12 @@ int service_main(const std::string& service, CLI::App& app, ServiceOptions& opti
 #include "twinslam/dds/heartbeat.hpp"
 
 namespace twinslam::dds {
-int serve_until_shutdown(HeartbeatPublisher& heartbeat) {
+int serve_until_shutdown(HeartbeatPublisher& heartbeat, Node& node) {
   heartbeat.set_state(msg::SVC_READY);
   spdlog::info("ready");
   wait_for_shutdown(std::chrono::hours(24 * 365 * 10));
   spdlog::info("stopping");
+  node.close_readers();
   return kExitOk;
 }
 }  // namespace twinslam::dds
@@ -62,7 +63,7 @@ int run_wired_service(const std::string& service, const std::string& description
     Counters counters;
     HeartbeatPublisher heartbeat(node, counters);
     wire(node, counters);
-    return serve_until_shutdown(heartbeat);
+    return serve_until_shutdown(heartbeat, node);
   });
 }
 }  // namespace twinslam::dds

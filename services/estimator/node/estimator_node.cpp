@@ -6,8 +6,6 @@
 
 namespace twinslam::estimator {
 namespace {
-using Clock = std::chrono::steady_clock;
-
 msg::Vec3 to_msg(const Eigen::Vector3d& v) {
   msg::Vec3 m;
   m.x(v.x());
@@ -42,72 +40,38 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
     : node_(node),
       counters_(counters),
       estimator_(options.estimator),
-      imu_wait_(options.imu_wait),
       odometry_(node.writer<msg::Odometry>(dds::topics::kOdometry)),
       local_map_(node.writer<msg::LocalMap>(dds::topics::kLocalMap)),
-      ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)) {
-  thread_ = std::thread([this] { worker(); });
+      ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)),
+      worker_(options.imu_wait, [this](const msg::FeatureFrame& frame, std::vector<ImuSample>&& imu) {
+        handle(frame, std::move(imu));
+      }) {
   node.subscribe<msg::Imu>(dds::topics::kImu, [this](const msg::Imu& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     counters_.add("imu_in");
-    std::lock_guard lock(mutex_);
-    if (m.stamp_ns() <= last_imu_ns_) {
-      counters_.add("imu_rejected");  // duplicate or out of order: the estimator needs increasing stamps
-      return;
-    }
-    last_imu_ns_ = m.stamp_ns();
     const auto& w = m.gyro_radps();
     const auto& a = m.accel_mps2();
-    imu_.push_back({m.stamp_ns(), Eigen::Vector3d(w.x(), w.y(), w.z()), Eigen::Vector3d(a.x(), a.y(), a.z())});
-    wake_.notify_one();
+    if (!worker_.push_imu({m.stamp_ns(), Eigen::Vector3d(w.x(), w.y(), w.z()), Eigen::Vector3d(a.x(), a.y(), a.z())})) {
+      counters_.add("imu_rejected");  // duplicate or out of order: the estimator needs increasing stamps
+    }
   });
   node.subscribe<msg::FeatureFrame>(dds::topics::kFeatures, [this](const msg::FeatureFrame& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     counters_.add("features_in");
-    std::lock_guard lock(mutex_);
-    pending_.push_back({std::make_shared<msg::FeatureFrame>(m), Clock::now()});
-    wake_.notify_one();
+    worker_.push_frame(std::make_shared<const msg::FeatureFrame>(m), m.stamp_ns());
   });
 }
 
-EstimatorNode::~EstimatorNode() {
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
+void EstimatorNode::handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu) {
+  for (const auto& s : new_imu) {
+    try {
+      estimator_.add_imu(s);
+    } catch (const InputError& e) {
+      counters_.add("imu_rejected");
+      spdlog::warn("imu: {}", e.what());
+    }
   }
-  wake_.notify_one();
-  thread_.join();
-}
-
-void EstimatorNode::worker() {
-  std::unique_lock lock(mutex_);
-  while (!stop_) {
-    if (pending_.empty()) {
-      wake_.wait(lock);
-      continue;
-    }
-    const auto& front = pending_.front();
-    const bool imu_covers = last_imu_ns_ >= front.frame->stamp_ns();
-    if (!imu_covers && Clock::now() - front.arrived < imu_wait_) {
-      wake_.wait_for(lock, std::chrono::milliseconds(10));
-      continue;
-    }
-    const auto frame = front.frame;
-    pending_.pop_front();
-    std::vector<ImuSample> imu;
-    imu.swap(imu_);
-    lock.unlock();
-    for (const auto& s : imu) {
-      try {
-        estimator_.add_imu(s);
-      } catch (const InputError& e) {
-        counters_.add("imu_rejected");
-        spdlog::warn("imu: {}", e.what());
-      }
-    }
-    process(*frame);
-    lock.lock();
-  }
+  process(frame);
 }
 
 void EstimatorNode::process(const msg::FeatureFrame& m) {

@@ -29,6 +29,6 @@ int main(int argc, char** argv) {
     twinslam::dds::Counters counters;
     twinslam::dds::HeartbeatPublisher heartbeat(node, counters);
     twinslam::estimator::EstimatorNode estimator(node, counters, options);
-    return twinslam::dds::serve_until_shutdown(heartbeat);
+    return twinslam::dds::serve_until_shutdown(heartbeat, node);
   });
 }

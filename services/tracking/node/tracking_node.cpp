@@ -10,7 +10,6 @@
 #include "twinslam/tracking/gyro_rotation.hpp"
 
 namespace twinslam::tracking {
-using Clock = std::chrono::steady_clock;
 
 TrackingNode::TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNodeOptions options)
     : node_(node),
@@ -18,57 +17,28 @@ TrackingNode::TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNod
       options_(std::move(options)),
       frontend_(std::shared_ptr<const CameraModel>(make_camera(options_.camera.intrinsics)), options_.frontend),
       features_(node.writer<msg::FeatureFrame>(dds::topics::kFeatures)),
-      ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)) {
-  thread_ = std::thread([this] { worker(); });
+      ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)),
+      worker_(options_.imu_wait, [this](const msg::Image& image, std::vector<estimator::ImuSample>&& imu) {
+        process(image, std::move(imu));
+      }) {
   node.subscribe<msg::Imu>(dds::topics::kImu, [this](const msg::Imu& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     counters_.add("imu_in");
-    std::lock_guard lock(mutex_);
     const auto& w = m.gyro_radps();
     const auto& a = m.accel_mps2();
-    imu_.push_back({m.stamp_ns(), Eigen::Vector3d(w.x(), w.y(), w.z()), Eigen::Vector3d(a.x(), a.y(), a.z())});
-    wake_.notify_one();
+    if (!worker_.push_imu({m.stamp_ns(), Eigen::Vector3d(w.x(), w.y(), w.z()), Eigen::Vector3d(a.x(), a.y(), a.z())})) {
+      counters_.add("imu_rejected");  // not after the previous sample
+    }
   });
   node.subscribe<msg::Image>(dds::topics::kImage, [this](const msg::Image& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     counters_.add("images_in");
-    std::lock_guard lock(mutex_);
-    pending_.push_back({std::make_shared<msg::Image>(m), Clock::now()});
-    wake_.notify_one();
+    worker_.push_frame(std::make_shared<const msg::Image>(m), m.stamp_ns());
   });
 }
 
-TrackingNode::~TrackingNode() {
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_one();
-  thread_.join();
-}
-
-void TrackingNode::worker() {
-  std::unique_lock lock(mutex_);
-  while (!stop_) {
-    if (pending_.empty()) {
-      wake_.wait(lock);
-      continue;
-    }
-    const auto& front = pending_.front();
-    const bool imu_covers = !imu_.empty() && imu_.back().stamp_ns >= front.image->stamp_ns();
-    if (!imu_covers && Clock::now() - front.arrived < options_.imu_wait) {
-      wake_.wait_for(lock, std::chrono::milliseconds(10));
-      continue;
-    }
-    const auto image = front.image;
-    pending_.pop_front();
-    lock.unlock();
-    process(*image);
-    lock.lock();
-  }
-}
-
-void TrackingNode::process(const msg::Image& m) {
+void TrackingNode::process(const msg::Image& m, std::vector<estimator::ImuSample>&& new_imu) {
+  imu_.insert(imu_.end(), new_imu.begin(), new_imu.end());
   const int w = static_cast<int>(m.width()), h = static_cast<int>(m.height());
   if (m.encoding() != "mono8" || m.step() < m.width() || m.data().size() < static_cast<std::size_t>(m.step()) * h ||
       w != options_.camera.intrinsics.width || h != options_.camera.intrinsics.height) {
@@ -78,17 +48,14 @@ void TrackingNode::process(const msg::Image& m) {
   } else {
     const cv::Mat image(h, w, CV_8UC1, const_cast<uint8_t*>(m.data().data()), m.step());
     std::optional<Eigen::Matrix3d> R_prev_curr_C;
-    {
-      std::lock_guard lock(mutex_);
-      if (last_frame_ns_ >= 0) {
-        R_prev_curr_C = gyro_rotation_C(imu_, last_frame_ns_, m.stamp_ns(), options_.camera.T_BC.linear());
-      }
-      // Keep only the IMU needed from this frame on.
-      const auto keep = std::find_if(imu_.begin(), imu_.end(),
-                                     [&](const estimator::ImuSample& s) { return s.stamp_ns >= m.stamp_ns(); });
-      imu_.erase(imu_.begin(), keep == imu_.begin() ? imu_.begin() : keep - 1);
-      last_frame_ns_ = m.stamp_ns();
+    if (last_frame_ns_ >= 0) {
+      R_prev_curr_C = gyro_rotation_C(imu_, last_frame_ns_, m.stamp_ns(), options_.camera.T_BC.linear());
     }
+    // Keep only the IMU needed from this frame on (one sample before it, for interpolation).
+    const auto keep = std::find_if(imu_.begin(), imu_.end(),
+                                   [&](const estimator::ImuSample& s) { return s.stamp_ns >= m.stamp_ns(); });
+    imu_.erase(imu_.begin(), keep == imu_.begin() ? imu_.begin() : keep - 1);
+    last_frame_ns_ = m.stamp_ns();
     FrameResult result;
     try {
       result = frontend_.track(m.stamp_ns(), image, R_prev_curr_C ? &*R_prev_curr_C : nullptr);

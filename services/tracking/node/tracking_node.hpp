@@ -1,17 +1,12 @@
 #pragma once
 // The tracking service's DDS shell: Image + Imu in, FeatureFrame out (and a FrameAck per frame for lockstep replay).
 // A frame is processed once the IMU has reached its stamp (so the gyro rotation since the previous frame, used as
-// the KLT prediction, is complete), or after `imu_wait` if the IMU stream ends or lags: deterministic whenever
-// the IMU covers the frame, and never stuck at the end of a dataset.
+// the KLT prediction, is complete), or after `imu_wait` if the IMU stream ends or lags (ImuGatedWorker).
 #include <chrono>
-#include <condition_variable>
-#include <deque>
-#include <memory>
-#include <mutex>
-#include <thread>
 #include <vector>
 
 #include "twinslam/camera/camera_config.hpp"
+#include "twinslam/core/imu_gated_worker.hpp"
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
 #include "twinslam/estimator/imu_types.hpp"
@@ -28,15 +23,9 @@ struct TrackingNodeOptions {
 class TrackingNode {
  public:
   TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNodeOptions options);
-  ~TrackingNode();
 
  private:
-  struct PendingFrame {
-    std::shared_ptr<msg::Image> image;
-    std::chrono::steady_clock::time_point arrived;
-  };
-  void worker();
-  void process(const msg::Image& image);
+  void process(const msg::Image& image, std::vector<estimator::ImuSample>&& new_imu);
   void send_ack(const msg::Image& image);
 
   dds::Node& node_;
@@ -45,15 +34,11 @@ class TrackingNode {
   Frontend frontend_;
   dds::Writer<msg::FeatureFrame> features_;
   dds::Writer<msg::FrameAck> ack_;
-
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::deque<PendingFrame> pending_;
-  std::vector<estimator::ImuSample> imu_;                // recent IMU, trimmed behind the last processed frame
+  // Worker-thread state: the IMU since shortly before the previous frame (for the gyro prediction).
+  std::vector<estimator::ImuSample> imu_;
   std::int64_t last_frame_ns_ = -1;
   unsigned long long seq_ = 0;
-  bool stop_ = false;
-  std::thread thread_;
+  ImuGatedWorker<msg::Image, estimator::ImuSample> worker_;  // last: its thread uses the members above
 };
 
 }  // namespace twinslam::tracking

@@ -114,6 +114,10 @@ class Node {
     return status;
   }
 
+  // Deletes every reader (waiting for running callbacks), so objects their callbacks use can be destroyed safely.
+  // Writers stay usable. Idempotent.
+  void close_readers();
+
   eprosima::fastdds::dds::DomainParticipant* participant() const { return participant_; }
 
  private:

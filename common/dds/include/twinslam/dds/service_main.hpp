@@ -29,8 +29,9 @@ int service_main(const std::string& service, CLI::App& app, ServiceOptions& opti
 
 namespace twinslam::dds {
 class HeartbeatPublisher;
-// Marks the service READY and blocks until SIGINT/SIGTERM; the usual tail of a service's main.
-int serve_until_shutdown(HeartbeatPublisher& heartbeat);
+// Marks the service READY and blocks until SIGINT/SIGTERM; the usual tail of a service's main. Then closes the
+// node's readers, so no DDS callback can reach the service objects the caller destroys next.
+int serve_until_shutdown(HeartbeatPublisher& heartbeat, Node& node);
 }  // namespace twinslam::dds
 
 namespace twinslam::dds {
