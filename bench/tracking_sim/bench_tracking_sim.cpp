@@ -1,8 +1,8 @@
 // Measures the tracking frontend on rendered city-loops images against the simulator's truth (the issue 6
-// acceptance figures): bench_tracking_sim [t0_s] [frames]; NOISE=<grey levels> sets the sensor noise (default 2).
+// acceptance figures): each track's first pixel is cast into the world to its true 3D point, which is projected
+// into every later frame; a tracked pixel more than 2 px from that projection is a wrong track.
+// Usage: bench_tracking_sim [t0_s] [frames]; NOISE=<grey levels> sets the sensor noise (default 2).
 // Not a test: it prints the figures.
-// each track's first pixel is cast into the world to its true 3D point, which is projected into every later
-// frame; a tracked pixel more than 2 px from that projection is a wrong track.
 #include <algorithm>
 #include <cstdlib>
 #include <cstdio>

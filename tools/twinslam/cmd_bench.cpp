@@ -3,6 +3,7 @@
 // Modes with a world frame are evaluated without alignment; `vio` (local frame only) with posyaw (4-DoF).
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <iostream>
 #include <sstream>
 
@@ -67,7 +68,16 @@ void add_bench_command(CLI::App& app, int& exit_code) {
     std::map<std::string, std::pair<std::optional<double>, std::optional<double>>> times;
     nlohmann::json metrics = nlohmann::json::object();
     int code = kExitOk;
+    // Modes whose fusion exists today; the others are listed in the table's note until their issues land.
+    const std::set<std::string> available{"vio"};
+    std::vector<std::string> unavailable;
     for (const auto& mode : o->modes) {
+      if (available.count(mode) == 0) {
+        std::cerr << "bench: " << mode << " is not available yet (its GNSS / digital-twin fusion is an open issue)"
+                  << std::endl;
+        unavailable.push_back(mode);
+        continue;
+      }
       RunOptions run;
       run.dataset = o->dataset;
       run.mode = mode;
@@ -107,6 +117,11 @@ void add_bench_command(CLI::App& app, int& exit_code) {
     for (const auto& m : done) table << ' ' << cell(times[m].second, "%.2f") << " |";
     table << "\n\nPath length " << cell(results.empty() ? std::nullopt : std::optional<double>(results[0].length_m), "%.1f")
           << " m. ATE alignment in parentheses: posyaw for the local-frame VIO, none for modes with a world frame.\n";
+    if (!unavailable.empty()) {
+      table << "Not available yet:";
+      for (const auto& m : unavailable) table << ' ' << m;
+      table << ".\n";
+    }
     std::ofstream(fs::path(o->out) / "table.md") << table.str();
     std::ofstream(fs::path(o->out) / "metrics.json") << metrics.dump(2) << '\n';
     std::vector<eval::PlotRun> plot_runs;
