@@ -15,6 +15,7 @@
 
 #include "monitor.hpp"
 #include "run_pipeline.hpp"
+#include "twinslam/dds/convert.hpp"
 #include "run_record.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
@@ -29,16 +30,9 @@ namespace fs = std::filesystem;
 namespace {
 bool uses_twin(const std::string& mode) { return mode.rfind("vio-twin", 0) == 0; }
 
-Eigen::Isometry3d to_iso(const msg::Pose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(p.q().w(), p.q().x(), p.q().y(), p.q().z()).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.p().x(), p.p().y(), p.p().z());
-  return T;
-}
-
 OdometryRecord to_record(const msg::Odometry& m) {
   const bool estimated = m.status() == msg::ODOM_TRACKING || m.status() == msg::ODOM_ALIGNED;
-  return {m.stamp_ns(), to_iso(m.T_WB()), to_iso(m.T_LB()), m.estimator_ms(), estimated};
+  return {m.stamp_ns(), dds::from_msg(m.T_WB()), dds::from_msg(m.T_LB()), m.estimator_ms(), estimated};
 }
 
 RegistrationRecord to_record(const msg::Registration& m) {
@@ -51,7 +45,7 @@ RegistrationRecord to_record(const msg::Registration& m) {
   r.time_ms = m.compute_ms();
   const Eigen::Matrix<double, 6, 6, Eigen::RowMajor> info(m.information().data());
   r.info_eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(info).eigenvalues();
-  const Eigen::Isometry3d T = to_iso(m.correction_W());
+  const Eigen::Isometry3d T = dds::from_msg(m.correction_W());
   r.dp_m = T.translation();
   // Roll, pitch, yaw (ZYX) of the correction.
   const Eigen::Matrix3d R = T.linear();

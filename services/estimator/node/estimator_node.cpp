@@ -3,27 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include "twinslam/core/error.hpp"
+#include "twinslam/dds/convert.hpp"
 
 namespace twinslam::estimator {
 namespace {
-msg::Vec3 to_msg(const Eigen::Vector3d& v) {
-  msg::Vec3 m;
-  m.x(v.x());
-  m.y(v.y());
-  m.z(v.z());
-  return m;
-}
-
-msg::Pose to_msg(const Eigen::Isometry3d& T) {
-  const Eigen::Quaterniond q(T.linear());
-  msg::Pose m;
-  m.q().w(q.w());
-  m.q().x(q.x());
-  m.q().y(q.y());
-  m.q().z(q.z());
-  m.p(to_msg(T.translation()));
-  return m;
-}
+using dds::to_msg;  // Eigen -> message, next to the status overload below
 
 msg::OdometryStatus to_msg(EstimatorStatus s) {
   switch (s) {
@@ -49,9 +33,7 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
   node.subscribe<msg::Imu>(dds::topics::kImu, [this](const msg::Imu& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     counters_.add("imu_in");
-    const auto& w = m.gyro_radps();
-    const auto& a = m.accel_mps2();
-    if (!worker_.push_imu({m.stamp_ns(), Eigen::Vector3d(w.x(), w.y(), w.z()), Eigen::Vector3d(a.x(), a.y(), a.z())})) {
+    if (!worker_.push_imu({m.stamp_ns(), dds::from_msg(m.gyro_radps()), dds::from_msg(m.accel_mps2())})) {
       counters_.add("imu_rejected");  // duplicate or out of order: the estimator needs increasing stamps
     }
   });
@@ -127,12 +109,7 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
     counters_.add("frames_failed");
     spdlog::error("feature frame {}: estimator failed: {}", m.stamp_ns(), e.what());
   }
-  msg::FrameAck ack;
-  ack.vehicle_id(m.vehicle_id());
-  ack.service("estimator");
-  ack.stamp_ns(m.stamp_ns());
-  ack.seq(m.seq());
-  ack_.publish(ack);
+  ack_.publish(dds::frame_ack(m.vehicle_id(), "estimator", m.stamp_ns(), m.seq()));
 }
 
 }  // namespace twinslam::estimator

@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "twinslam/core/error.hpp"
+#include "twinslam/dds/convert.hpp"
 #include "twinslam/core/shutdown.hpp"
 #include "twinslam/ingest/replay.hpp"
 
@@ -143,12 +144,8 @@ class IngestNode::Impl {
         m.vehicle_id(vehicle);
         m.stamp_ns(r.stamp_ns);
         m.seq(imu_seq_++);
-        m.gyro_radps().x(r.gyro_radps.x());
-        m.gyro_radps().y(r.gyro_radps.y());
-        m.gyro_radps().z(r.gyro_radps.z());
-        m.accel_mps2().x(r.accel_mps2.x());
-        m.accel_mps2().y(r.accel_mps2.y());
-        m.accel_mps2().z(r.accel_mps2.z());
+        m.gyro_radps(dds::to_msg(r.gyro_radps));
+        m.accel_mps2(dds::to_msg(r.accel_mps2));
         ok = imu_.publish(m);
         counters_.add("imu_out");
         break;
@@ -222,9 +219,7 @@ class IngestNode::Impl {
       f.id(o.landmark_id);
       f.u(static_cast<float>(o.u));
       f.v(static_cast<float>(o.v));
-      f.bearing_C().x(f_C.x());
-      f.bearing_C().y(f_C.y());
-      f.bearing_C().z(f_C.z());
+      f.bearing_C(dds::to_msg(f_C));
       f.track_length(o.track_length);
       m.features().push_back(f);
     }

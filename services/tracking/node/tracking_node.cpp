@@ -7,6 +7,7 @@
 
 #include "twinslam/camera/camera_model.hpp"
 #include "twinslam/core/error.hpp"
+#include "twinslam/dds/convert.hpp"
 #include "twinslam/tracking/gyro_rotation.hpp"
 
 namespace twinslam::tracking {
@@ -24,9 +25,7 @@ TrackingNode::TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNod
   node.subscribe<msg::Imu>(dds::topics::kImu, [this](const msg::Imu& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     counters_.add("imu_in");
-    const auto& w = m.gyro_radps();
-    const auto& a = m.accel_mps2();
-    if (!worker_.push_imu({m.stamp_ns(), Eigen::Vector3d(w.x(), w.y(), w.z()), Eigen::Vector3d(a.x(), a.y(), a.z())})) {
+    if (!worker_.push_imu({m.stamp_ns(), dds::from_msg(m.gyro_radps()), dds::from_msg(m.accel_mps2())})) {
       counters_.add("imu_rejected");  // not after the previous sample
     }
   });
@@ -77,9 +76,7 @@ void TrackingNode::process(const msg::Image& m, std::vector<estimator::ImuSample
       mf.id(f.id);
       mf.u(static_cast<float>(f.uv.x()));
       mf.v(static_cast<float>(f.uv.y()));
-      mf.bearing_C().x(f.bearing_C.x());
-      mf.bearing_C().y(f.bearing_C.y());
-      mf.bearing_C().z(f.bearing_C.z());
+      mf.bearing_C(dds::to_msg(f.bearing_C));
       mf.track_length(f.track_length);
       out.features().push_back(mf);
     }
@@ -90,12 +87,7 @@ void TrackingNode::process(const msg::Image& m, std::vector<estimator::ImuSample
 }
 
 void TrackingNode::send_ack(const msg::Image& m) {
-  msg::FrameAck ack;
-  ack.vehicle_id(m.vehicle_id());
-  ack.service("tracking");
-  ack.stamp_ns(m.stamp_ns());
-  ack.seq(m.seq());
-  ack_.publish(ack);
+  ack_.publish(dds::frame_ack(m.vehicle_id(), "tracking", m.stamp_ns(), m.seq()));
 }
 
 }  // namespace twinslam::tracking
