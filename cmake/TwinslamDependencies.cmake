@@ -18,3 +18,14 @@ if(TWINSLAM_BUILD_BENCHMARKS)
 endif()
 find_package(Ceres REQUIRED)
 find_package(embree 3 REQUIRED)   # Embree 3.13 ray casting for the simulator renderer (target embree)
+# Digital twin (common/twin): Draco (tile compression, KHR_draco_mesh_compression), PROJ 9 (projected CRSs),
+# GeographicLib (ECEF <-> ENU; Debian ships only a Find module), libosmium (OSM XML, header only, needs expat),
+# tinygltf (header only, /usr/include/tiny_gltf.h).
+find_package(draco REQUIRED)
+find_package(PROJ REQUIRED CONFIG)
+list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
+find_package(GeographicLib REQUIRED)
+find_package(EXPAT REQUIRED)
+find_package(ZLIB REQUIRED)
+find_path(OSMIUM_INCLUDE_DIR osmium/osm.hpp REQUIRED)
+find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
