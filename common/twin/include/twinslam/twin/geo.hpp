@@ -54,6 +54,9 @@ class CrsTransform {
 
   Eigen::Vector3d to_lla(const Eigen::Vector3d& xyz) const;  // (lat [deg], lon [deg], h [m]); throws InputError on failure
   const std::string& crs() const { return crs_; }
+  // How heights are converted: a compound CRS whose vertical datum has no geoid grid here (EPSG:7415 NAP) gets its
+  // height treated as EGM96 height (see crs.cpp); this names the method used, for logs and tests.
+  const std::string& method() const;
 
  private:
   std::string crs_;
