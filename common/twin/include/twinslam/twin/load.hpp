@@ -24,7 +24,7 @@ struct LoadOptions {
   std::optional<std::string> crs;   // CRS of the source coordinates when the file does not say (--crs)
   double storey_height_m = 3.0;     // OSM: height per building:levels when no height tag [m]
   double default_height_m = 10.0;   // OSM: height of a building with neither height nor levels [m]
-  // 3D Tiles: the finest level whose geometricError is >= this is used (0 = the leaves, the most detailed) [m].
+  // 3D Tiles: the coarsest tiles whose geometricError is <= this are used (0 = the leaves, the most detailed) [m].
   double max_geometric_error_m = 0.0;
 };
 

@@ -1,0 +1,227 @@
+// OGC 3D Tiles: placement of the CesiumGS samples in W, golden placements, level choice, transform chains,
+// external tilesets and malformed tilesets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "tiles_test_utils.hpp"
+#include "twinslam/twin/tiles3d.hpp"
+
+using namespace twinslam::twin;
+using namespace tiles_test;
+
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+// W's origin: the centre of the sample city (its tileset's region, radians), on the ellipsoid.
+const GeoOrigin kOrigin{0.698874 * kDeg, -1.31968 * kDeg, 0.0};
+
+LoadOptions options(double max_error = 0.0) {
+  LoadOptions o;
+  o.origin = kOrigin;
+  o.max_geometric_error_m = max_error;
+  return o;
+}
+
+// Per batch id: placed vertex bounds in W.
+std::map<std::uint32_t, Eigen::AlignedBox3d> buildings(const TileContentRef& c, const EnuFrame& enu, BatchTable* table) {
+  std::vector<std::uint32_t> ids;
+  const Mesh m = load_tile_content(c, enu, &ids, table);
+  EXPECT_EQ(ids.size(), m.num_vertices());
+  std::map<std::uint32_t, Eigen::AlignedBox3d> out;
+  for (std::size_t i = 0; i < ids.size(); ++i) out[ids[i]].extend(m.p_W[i]);
+  return out;
+}
+
+std::string tileset(const std::string& root) { return R"({"asset":{"version":"1.1"},"geometricError":100,"root":)" + root + "}"; }
+std::string tile(double error, const std::string& uri, const std::string& more = "") {
+  return R"({"boundingVolume":{"sphere":[0,0,0,1e7]},"geometricError":)" + std::to_string(error) +
+         (uri.empty() ? "" : R"(,"content":{"uri":")" + uri + "\"}") + more + "}";
+}
+
+}  // namespace
+
+TEST(Tiles3d, CityBuildingsLandWhereTheirBatchTablesSay) {
+  // In the city tiles each building's batch-table Longitude / Latitude (radians) is the centre of its footprint and
+  // its base lies on the ellipsoid (h = 0); Height is the building's height: the roof is Height metres above that
+  // point. (Measured: footprint centre within 0.4 m of the position, base at 0.00 m, roof at Height +- 0.01 m.)
+  LoadReport report;
+  const auto contents = select_3dtiles_contents(sample("cesium-samples/TilesetWithRequestVolume/city/tileset.json"), 0, &report);
+  ASSERT_EQ(contents.size(), 4u);
+  EXPECT_TRUE(report.rejected.empty());
+  const EnuFrame enu(kOrigin);
+  int checked = 0;
+  for (const TileContentRef& c : contents) {
+    BatchTable table;
+    const auto placed = buildings(c, enu, &table);
+    const auto* lon = table.find("Longitude");
+    const auto* lat = table.find("Latitude");
+    const auto* height = table.find("Height");
+    ASSERT_TRUE(lon && lat && height) << c.path;
+    ASSERT_EQ(placed.size(), table.batch_length) << c.path;
+    for (const auto& [id, box] : placed) {
+      const Eigen::Vector3d p_W = enu.from_lla((*lat)[id] * kDeg, (*lon)[id] * kDeg, 0.0);
+      const Eigen::Vector2d centre = box.center().head<2>();
+      EXPECT_LT((centre - p_W.head<2>()).norm(), 1.0) << c.path << " building " << id;
+      EXPECT_NEAR(box.min().z(), p_W.z(), 1.0) << c.path << " building " << id;
+      EXPECT_NEAR(box.max().z(), p_W.z() + (*height)[id], 1.0) << c.path << " building " << id;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 40);
+}
+
+TEST(Tiles3d, EveryValidSampleLoads) {
+  for (const char* dir : {"BatchedWGS84", "BatchedWithRtcCenter", "BatchedWithTransformBox", "BatchedWithTransformRegion",
+                          "BatchedDeprecated1"}) {
+    LoadReport report;
+    const Mesh m = load_3dtiles(sample(std::string("cesium-tools/Batched/") + dir + "/tileset.json"), options(), &report);
+    EXPECT_EQ(report.parts_loaded, 1u) << dir;
+    EXPECT_TRUE(report.rejected.empty()) << dir << ": " << (report.rejected.empty() ? "" : report.rejected[0]);
+    EXPECT_EQ(m.num_triangles(), 120u) << dir;  // ten boxes of 12 triangles
+    // The tileset's region: the buildings stand within ~100 m of the origin, between 0 and 20 m up.
+    EXPECT_LT(m.bounds().center().head<2>().norm(), 100.0) << dir;
+    EXPECT_GT(m.bounds().min().z(), -1.0) << dir;
+    EXPECT_LT(m.bounds().max().z(), 20.0) << dir;
+  }
+  // The root sample: the external city tileset (4 b3dm), building.b3dm under its tile transform; points.pnts is
+  // point-cloud content, which this loader does not read: it is reported, not silently dropped.
+  LoadReport report;
+  const Mesh all = load_3dtiles(sample("cesium-samples/TilesetWithRequestVolume/tileset.json"), options(), &report);
+  EXPECT_EQ(report.parts_loaded, 5u);
+  ASSERT_EQ(report.rejected.size(), 1u);
+  EXPECT_NE(report.rejected[0].find("points.pnts"), std::string::npos) << report.rejected[0];
+  EXPECT_NE(report.rejected[0].find("not supported"), std::string::npos) << report.rejected[0];
+  // building.b3dm: its transform scales the 13.42 m model by 5 and stands it on the ellipsoid; the root region's
+  // maximum height, 67.01 m, is its roof.
+  const auto contents = select_3dtiles_contents(sample("cesium-samples/TilesetWithRequestVolume/tileset.json"), 0, nullptr);
+  ASSERT_EQ(contents.size(), 6u);  // 4 city tiles, building, points (rejected only when read)
+  const EnuFrame enu(kOrigin);
+  for (const TileContentRef& c : contents) {
+    if (c.path.find("building.b3dm") == std::string::npos) continue;
+    const Eigen::AlignedBox3d b = load_tile_content(c, enu).bounds();
+    EXPECT_NEAR(b.min().z(), 0.0, 1.0);
+    EXPECT_NEAR(b.max().z(), 67.01, 1.0);
+    EXPECT_NEAR(b.sizes().x(), 2 * 1.869 * 5, 2.0);  // the tile's box half-axis 1.869 m, times the scale 5
+  }
+  EXPECT_NEAR(all.bounds().max().z(), 67.01, 1.0);
+}
+
+TEST(Tiles3d, TransformedTilesLandOnTheirGoldenPlacement) {
+  // BatchedWGS84 holds the ten buildings' vertices in ECEF directly (no transform, no RTC): the golden placement.
+  // BatchedWithTransformBox / -Region and the legacy BatchedDeprecated1 hold the same vertices (same order) in a
+  // local ENU frame under a tile transform. The golden file stores ECEF as float32, so its vertices are off by up
+  // to half a float32 step per axis: 0.0625 m at |x| ~ 1.2e6 m, 0.25 m at |y|, |z| ~ 4e6 m -> 0.36 m in all.
+  const Mesh golden = load_3dtiles(sample("cesium-tools/Batched/BatchedWGS84/tileset.json"), options(), nullptr);
+  ASSERT_EQ(golden.num_vertices(), 240u);
+  const double kFloat32Bound = std::sqrt(0.0625 * 0.0625 + 2 * 0.25 * 0.25);
+  for (const char* dir : {"BatchedWithTransformBox", "BatchedWithTransformRegion", "BatchedDeprecated1"}) {
+    const Mesh placed = load_3dtiles(sample(std::string("cesium-tools/Batched/") + dir + "/tileset.json"), options(), nullptr);
+    ASSERT_EQ(placed.num_vertices(), golden.num_vertices()) << dir;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < golden.num_vertices(); ++i) worst = std::max(worst, (placed.p_W[i] - golden.p_W[i]).norm());
+    EXPECT_LT(worst, kFloat32Bound + 1e-3) << dir;
+  }
+  // BatchedWithRtcCenter: the TransformBox vertices plus RTC_CENTER (0.1, 0.2, 0.3). The spec adds RTC_CENTER in
+  // the z-up tile frame, after the y-up -> z-up turn and before the tile transform: every vertex moves by
+  // R_W_ECEF * R_tile * rtc. (Added after the transform it would be R_W_ECEF * rtc; added in the y-up frame,
+  // R_W_ECEF * R_tile * (0.1, 0.3, -0.2): both differ by more than 0.1 m.)
+  const Mesh box = load_3dtiles(sample("cesium-tools/Batched/BatchedWithTransformBox/tileset.json"), options(), nullptr);
+  const Mesh rtc = load_3dtiles(sample("cesium-tools/Batched/BatchedWithRtcCenter/tileset.json"), options(), nullptr);
+  ASSERT_EQ(rtc.num_vertices(), box.num_vertices());
+  const auto contents = select_3dtiles_contents(sample("cesium-tools/Batched/BatchedWithRtcCenter/tileset.json"), 0, nullptr);
+  ASSERT_EQ(contents.size(), 1u);
+  const EnuFrame enu(kOrigin);
+  const Eigen::Vector3d shift_W = enu.R_W_ECEF() * contents[0].T_ECEF_tile.topLeftCorner<3, 3>() * Eigen::Vector3d(0.1, 0.2, 0.3);
+  for (std::size_t i = 0; i < box.num_vertices(); ++i) {
+    ASSERT_LT((rtc.p_W[i] - box.p_W[i] - shift_W).norm(), 1e-3) << i;
+  }
+}
+
+TEST(Tiles3d, LevelChoiceFollowsGeometricErrorAndRefine) {
+  Scratch tmp("levels");
+  const std::string city = sample("cesium-samples/TilesetWithRequestVolume/city/");
+  auto write = [&](const std::string& refine) {
+    const std::string children = R"(,"refine":")" + refine + R"(","children":[)" + tile(0, city + "lr.b3dm") + "," +
+                                 tile(0, city + "ur.b3dm") + "]";
+    write_text(tmp.path(refine + ".json"), tileset(tile(50, city + "ll.b3dm", children)));
+    return tmp.path(refine + ".json");
+  };
+  auto names = [](const std::vector<TileContentRef>& v) {
+    std::string s;
+    for (const auto& c : v) s += std::filesystem::path(c.path).filename().string() + " ";
+    return s;
+  };
+  const std::string replace = write("REPLACE");
+  const std::string add = write("ADD");
+  EXPECT_EQ(names(select_3dtiles_contents(replace, 0, nullptr)), "lr.b3dm ur.b3dm ");         // leaves replace the root
+  EXPECT_EQ(names(select_3dtiles_contents(add, 0, nullptr)), "ll.b3dm lr.b3dm ur.b3dm ");     // leaves add to it
+  EXPECT_EQ(names(select_3dtiles_contents(replace, 50, nullptr)), "ll.b3dm ");               // root is good enough
+  EXPECT_EQ(names(select_3dtiles_contents(add, 80, nullptr)), "ll.b3dm ");
+  EXPECT_EQ(names(select_3dtiles_contents(replace, 49.9, nullptr)), "lr.b3dm ur.b3dm ");
+}
+
+TEST(Tiles3d, TransformsChainParentTimesChild) {
+  // Parent: a 100 m ECEF translation d; child: the BatchedWithTransformBox transform T. parent * child puts every
+  // vertex at golden + d; child * parent would put it at golden + R(T) d, ~60 m away from that.
+  Scratch tmp("chain");
+  const std::string dir = sample("cesium-tools/Batched/BatchedWithTransformBox/");
+  const std::string T = R"([0.9686356343768792,0.24848542777253735,0,0,-0.15986460744966327,0.623177611820219,)"
+                        R"(0.765567091384559,0,0.19023226619126932,-0.7415555652213445,0.6433560667227647,0,)"
+                        R"(1215011.9317263428,-4736309.3434217675,4081602.0044800863,1])";
+  const std::string child = tile(0, dir + "batchedWithTransformBox.b3dm", R"(,"transform":)" + T);
+  write_text(tmp.path("chain.json"), tileset(tile(10, "", R"(,"refine":"ADD","transform":[1,0,0,0,0,1,0,0,0,0,1,0,100,0,0,1],"children":[)" + child + "]")));
+  const Mesh chained = load_3dtiles(tmp.path("chain.json"), options(), nullptr);
+  const Mesh golden = load_3dtiles(dir + "tileset.json", options(), nullptr);
+  ASSERT_EQ(chained.num_vertices(), golden.num_vertices());
+  const EnuFrame enu(kOrigin);
+  const Eigen::Vector3d d_W = enu.R_W_ECEF() * Eigen::Vector3d(100, 0, 0);
+  for (std::size_t i = 0; i < golden.num_vertices(); ++i) {
+    ASSERT_LT((chained.p_W[i] - golden.p_W[i] - d_W).norm(), 1e-3) << i;
+  }
+}
+
+TEST(Tiles3d, BadContentIsRejectedAndLoadingContinues) {
+  Scratch tmp("reject");
+  const std::string city = sample("cesium-samples/TilesetWithRequestVolume/city/");
+  const std::vector<std::uint8_t> ll = bytes_of(city + "ll.b3dm");
+  write_bytes(tmp.path("cut.b3dm"), {ll.begin(), ll.begin() + 500});
+  write_bytes(tmp.path("invalid.b3dm"), bytes_of(sample("cesium-validator/invalid.b3dm")));
+  write_text(tmp.path("self.json"), tileset(tile(0, "self.json")));
+  const std::string children = R"(,"refine":"ADD","children":[)" + tile(0, "cut.b3dm") + "," + tile(0, "missing.b3dm") + "," +
+                               tile(0, "invalid.b3dm") + "," + tile(0, city + "lr.b3dm") + "," + tile(0, "self.json") + "]";
+  write_text(tmp.path("tileset.json"), tileset(tile(10, "", children)));
+  LoadReport report;
+  const Mesh m = load_3dtiles(tmp.path("tileset.json"), options(), &report);
+  EXPECT_EQ(report.parts_loaded, 1u);
+  EXPECT_GT(m.num_triangles(), 0u);
+  ASSERT_EQ(report.rejected.size(), 4u);
+  std::string all;
+  for (const auto& r : report.rejected) all += r + "\n";
+  EXPECT_NE(all.find("cut.b3dm: b3dm byteLength 9700 exceeds the 500 bytes available"), std::string::npos) << all;
+  EXPECT_NE(all.find("missing.b3dm: cannot open"), std::string::npos) << all;
+  EXPECT_NE(all.find("invalid.b3dm: b3dm version 2 unsupported"), std::string::npos) << all;
+  EXPECT_NE(all.find("self.json refers back to itself (cycle)"), std::string::npos) << all;
+}
+
+TEST(Tiles3d, MalformedTilesetThrowsWithTheReason) {
+  Scratch tmp("malformed");
+  auto expect = [&](const std::string& text, const std::string& reason) {
+    write_text(tmp.path("t.json"), text);
+    expect_input_error([&] { load_3dtiles(tmp.path("t.json"), options(), nullptr); }, {"t.json", reason});
+  };
+  expect(R"({"asset":{"version":"1.0"},"root":{)", "malformed");
+  expect(R"({"root":{}})", "asset.version");
+  expect(R"({"asset":{"version":"7.0"},"root":{}})", "'7.0' unsupported");
+  expect(R"({"asset":{"version":"1.0"}})", "root");
+  expect(tileset(R"({"boundingVolume":{"sphere":[0,0,0,1]}})"), "geometricError");
+  expect(tileset(R"({"geometricError":1})"), "boundingVolume missing");
+  expect(tileset(R"({"geometricError":1,"boundingVolume":{"region":[0,0,7,1,0,1]}})"), "region longitude");
+  expect(tileset(R"({"geometricError":1,"boundingVolume":{"box":[0,0,0]}})"), "box is not 12");
+  expect(tileset(tile(1, "", R"(,"transform":[1,0,0,0])")), "transform is not 16");
+  expect(tileset(tile(1, "", R"(,"refine":"MERGE")")), "refine 'MERGE'");
+  expect(tileset(tile(1, "", R"(,"children":[{"geometricError":0}])")), "root/0: boundingVolume missing");
+  expect_input_error([] { load_3dtiles("/nonexistent/tileset.json", options(), nullptr); }, {"/nonexistent/tileset.json", "cannot open"});
+}
