@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "twinslam/core/error.hpp"
+#include "twinslam/twin/cityjson.hpp"
 #include "twinslam/twin/obj.hpp"
 #include "twinslam/twin/ply.hpp"
 
@@ -102,7 +103,7 @@ Mesh load_twin_source(const std::string& path, const LoadOptions& options, LoadR
     case Kind::kTiles:
       throw InputError(where(path, 0, "3D Tiles support not built yet"));
     case Kind::kCityJson:
-      throw InputError(where(path, 0, "CityJSON support not built yet"));
+      return std::move(load_cityjson(path, options, &rep).mesh_W);
     case Kind::kOsm:
       throw InputError(where(path, 0, "OSM support not built yet"));
   }
