@@ -1,0 +1,25 @@
+#pragma once
+// The tiles service's one config struct: window around each vehicle, LRU size, where the twin store lives.
+// validate() is the one place the values are checked; parse_tiles_config reads the YAML form
+//   window_m: 150      # side of the square window around each vehicle [m]
+//   cache_tiles: 64    # encoded tiles kept in memory (LRU)
+//   twin_dir: /data/twin
+#include <string>
+
+namespace twinslam::tiles {
+
+struct TilesConfig {
+  double window_m = 150.0;  // side of the square window (in E, N) centred on the vehicle [m]
+  int cache_tiles = 64;     // tiles whose encoded bytes stay in memory (LRU); a re-send needs no disk read
+  std::string twin_dir;     // the twin store (`twinslam twin build` output)
+
+  // Throws twinslam::InputError "SOURCE: tiles key 'K': what" naming the first bad field.
+  void validate(const std::string& source = "TilesConfig") const;
+};
+
+// Parses YAML text (`file` only names it in messages) over `base`; unknown keys and wrong types throw InputError
+// naming the file, line and key. Not validated: the caller applies its overrides (e.g. --twin) and calls validate().
+TilesConfig parse_tiles_config(const std::string& text, const std::string& file, const TilesConfig& base = {});
+TilesConfig load_tiles_config(const std::string& path, const TilesConfig& base = {});
+
+}  // namespace twinslam::tiles

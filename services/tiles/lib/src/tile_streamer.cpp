@@ -1,0 +1,76 @@
+#include "twinslam/tiles/tile_streamer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "twinslam/core/error.hpp"
+
+namespace twinslam::tiles {
+
+TileStreamer::TileStreamer(twin::TwinIndex index, double window_m)
+    : grid_(std::move(index)), half_size_m_(0.5 * window_m) {}
+
+void TileStreamer::sort_nearest(std::vector<twin::TileKey>* keys, const Eigen::Vector2d& p_W) const {
+  // Nearest first: if the link is slow, the tile under the vehicle arrives before the window's corners.
+  std::stable_sort(keys->begin(), keys->end(), [&](const twin::TileKey& a, const twin::TileKey& b) {
+    return grid_.distance_to_square(a, p_W) < grid_.distance_to_square(b, p_W);
+  });
+}
+
+StreamDecision TileStreamer::update(const std::string& vehicle, const Eigen::Vector3d& p_W) {
+  StreamDecision d;
+  if (!p_W.allFinite()) return d;
+  const Eigen::Vector2d p = p_W.head<2>();
+  KeySet& held = held_[vehicle];
+  for (const twin::TileKey& key : grid_.tiles_in({p, half_size_m_})) {
+    if (!held.insert(key).second) continue;
+    d.new_for_vehicle.push_back(key);
+    if (published_.insert(key).second) d.publish.push_back(key);
+  }
+  sort_nearest(&d.new_for_vehicle, p);
+  sort_nearest(&d.publish, p);
+  return d;
+}
+
+StreamDecision TileStreamer::request(const std::string& vehicle, const Eigen::Vector2d& center_W, double half_size_m,
+                                     const std::vector<twin::TileKey>& have) {
+  if (!center_W.allFinite()) throw InputError("tile request of '" + vehicle + "': window centre is not finite");
+  if (!std::isfinite(half_size_m) || half_size_m <= 0.0) {
+    throw InputError("tile request of '" + vehicle + "': half_size_m must be finite and > 0, got " +
+                     std::to_string(half_size_m));
+  }
+  KeySet& held = held_[vehicle];
+  held = KeySet(have.begin(), have.end());
+  StreamDecision d;
+  for (const twin::TileKey& key : grid_.tiles_in({center_W, half_size_m})) {
+    if (!held.insert(key).second) continue;
+    d.new_for_vehicle.push_back(key);
+    published_.insert(key);
+  }
+  sort_nearest(&d.new_for_vehicle, center_W);
+  d.publish = d.new_for_vehicle;  // the requester says it lacks them: latched or not, send them again
+  return d;
+}
+
+void TileStreamer::publish_failed(const twin::TileKey& key) {
+  published_.erase(key);
+  for (auto& [vehicle, held] : held_) held.erase(key);
+}
+
+bool TileStreamer::holds(const std::string& vehicle, const twin::TileKey& key) const {
+  const auto it = held_.find(vehicle);
+  return it != held_.end() && it->second.count(key) != 0;
+}
+
+std::size_t TileStreamer::memory_bytes() const {
+  // A set node is roughly key + next pointer + cached hash; buckets are one pointer each.
+  const std::size_t node = sizeof(twin::TileKey) + 2 * sizeof(void*);
+  std::size_t bytes = sizeof(*this) + grid_.memory_bytes() - sizeof(grid_) + published_.size() * node +
+                      published_.bucket_count() * sizeof(void*);
+  for (const auto& [vehicle, held] : held_) {
+    bytes += vehicle.capacity() + sizeof(held) + held.size() * node + held.bucket_count() * sizeof(void*);
+  }
+  return bytes;
+}
+
+}  // namespace twinslam::tiles
