@@ -9,8 +9,11 @@
 
 #include "twinslam/core/error.hpp"
 #include "twinslam/twin/cityjson.hpp"
+#include "twinslam/twin/gltf.hpp"
 #include "twinslam/twin/obj.hpp"
+#include "twinslam/twin/osm.hpp"
 #include "twinslam/twin/ply.hpp"
+#include "twinslam/twin/tiles3d.hpp"
 
 namespace twinslam::twin {
 namespace {
@@ -98,14 +101,20 @@ Mesh load_twin_source(const std::string& path, const LoadOptions& options, LoadR
       rep.parts_loaded += 1;
       return mesh;
     }
-    case Kind::kGltf:
-      throw InputError(where(path, 0, "glTF support not built yet"));
+    case Kind::kGltf: {  // a standalone model: y-up model frame turned z-up, then like PLY / OBJ
+      Mesh mesh = load_gltf_file(path);
+      for (Eigen::Vector3d& p : mesh.p_W) p = gltf_y_up_to_z_up(p);
+      for (Eigen::Vector3d& n : mesh.n_W) n = gltf_y_up_to_z_up(n);
+      bring_into_w(mesh, std::nullopt, options, path);
+      rep.parts_loaded += 1;
+      return mesh;
+    }
     case Kind::kTiles:
-      throw InputError(where(path, 0, "3D Tiles support not built yet"));
+      return load_3dtiles(path, options, &rep);
     case Kind::kCityJson:
       return std::move(load_cityjson(path, options, &rep).mesh_W);
     case Kind::kOsm:
-      throw InputError(where(path, 0, "OSM support not built yet"));
+      return std::move(load_osm(path, options, &rep).mesh_W);
   }
   throw InputError(where(path, 0, "unknown twin source format"));
 }
