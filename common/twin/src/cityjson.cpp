@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -63,6 +64,8 @@ CityJsonModel load_cityjson(const std::string& path, const LoadOptions& options,
   }
   const auto vertices = doc.find("vertices");
   if (vertices == doc.end() || !vertices->is_array()) throw InputError(where(path, 0, "no vertices array"));
+  if (vertices->size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw InputError(where(path, 0, "more vertices than a mesh can index"));
   const auto objects = doc.find("CityObjects");
   if (objects == doc.end() || !objects->is_object()) throw InputError(where(path, 0, "no CityObjects object"));
 

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 
 #include "twinslam/core/error.hpp"
@@ -215,6 +216,8 @@ PlyFile read_ply(const std::string& path) {
       ix = find_prop(e, "x"), iy = find_prop(e, "y"), iz = find_prop(e, "z");
       inx = find_prop(e, "nx"), iny = find_prop(e, "ny"), inz = find_prop(e, "nz");
       if (ix < 0 || iy < 0 || iz < 0) throw InputError(where(path, 0, "PLY vertex element lacks x, y or z"));
+      if (e.count > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        throw InputError(where(path, 0, "PLY has more vertices than a mesh can index"));
       vertices_seen = e.count;
       out.mesh.p_W.reserve(e.count);
     }
