@@ -1,11 +1,105 @@
 #include "tiles_node.hpp"
 
+#include <spdlog/spdlog.h>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/dds/convert.hpp"
+
 namespace twinslam::tiles {
 
-void wire_tiles_inputs(dds::Node& node, dds::Counters& counters) {
-  node.subscribe<msg::Odometry>(dds::topics::kOdometry, [&counters](const msg::Odometry&) { counters.add("odometry_in"); });
-  node.subscribe<msg::GnssFix>(dds::topics::kGnss, [&counters](const msg::GnssFix&) { counters.add("gnss_in"); });
-  node.subscribe<msg::TileRequest>(dds::topics::kTileRequest, [&counters](const msg::TileRequest&) { counters.add("tile_requests_in"); });
+TilesNode::TilesNode(dds::Node& node, dds::Counters& counters, const TilesConfig& config)
+    : node_(node),
+      counters_(counters),
+      streamer_(twin::read_twin_index(config.twin_dir), config.window_m),
+      cache_(static_cast<std::size_t>(config.cache_tiles), TileCache::store_loader(config.twin_dir)),
+      enu_(streamer_.grid().index().origin),
+      writer_(node.writer<msg::MapTile>(dds::topics::kMapTile)) {
+  spdlog::info("twin '{}' from {}: {} tiles of {} m, window {} m", streamer_.grid().index().twin_id, config.twin_dir,
+               streamer_.grid().index().tiles.size(), streamer_.grid().tile_size_m(), config.window_m);
+  node.subscribe<msg::Odometry>(dds::topics::kOdometry, [this](const msg::Odometry& m) { on_odometry(m); });
+  node.subscribe<msg::GnssFix>(dds::topics::kGnss, [this](const msg::GnssFix& m) { on_gnss(m); });
+  node.subscribe<msg::TileRequest>(dds::topics::kTileRequest, [this](const msg::TileRequest& m) { on_request(m); });
+}
+
+TilesNode::~TilesNode() { node_.close_readers(); }
+
+bool TilesNode::serves(const std::string& vehicle) const {
+  return node_.config().vehicle_id.empty() || vehicle == node_.config().vehicle_id;
+}
+
+void TilesNode::on_odometry(const msg::Odometry& m) {
+  if (!serves(m.vehicle_id())) return;
+  counters_.add("odometry_in");
+  std::lock_guard lock(mutex_);
+  const auto p_W = positions_.on_odometry(m.vehicle_id(), m.status() == msg::ODOM_ALIGNED, dds::from_msg(m.T_WB().p()));
+  if (p_W) send(streamer_.update(m.vehicle_id(), *p_W));
+}
+
+void TilesNode::on_gnss(const msg::GnssFix& m) {
+  if (!serves(m.vehicle_id())) return;
+  counters_.add("gnss_in");
+  std::lock_guard lock(mutex_);
+  if (positions_.aligned(m.vehicle_id())) return;  // aligned odometry drives the window: skip the conversion
+  Eigen::Vector3d p_W;
+  try {
+    p_W = enu_.from_lla(m.latitude_deg(), m.longitude_deg(), m.altitude_m());
+  } catch (const std::exception& e) {  // GeographicLib rejects |lat| > 90
+    counters_.add("gnss_rejected");
+    spdlog::warn("gnss fix of '{}' at {}: {}", m.vehicle_id(), m.stamp_ns(), e.what());
+    return;
+  }
+  if (const auto p = positions_.on_gnss(m.vehicle_id(), p_W)) send(streamer_.update(m.vehicle_id(), *p));
+}
+
+void TilesNode::on_request(const msg::TileRequest& m) {
+  if (!serves(m.vehicle_id())) return;
+  counters_.add("tile_requests_in");
+  std::lock_guard lock(mutex_);
+  std::vector<twin::TileKey> have;
+  for (const auto& text : m.have()) {
+    if (const auto key = streamer_.grid().parse_wire_key(text)) have.push_back(*key);
+  }
+  try {
+    send(streamer_.request(m.vehicle_id(), {m.center_e_m(), m.center_n_m()}, m.half_size_m(), have));
+  } catch (const InputError& e) {
+    counters_.add("tile_requests_rejected");
+    spdlog::warn("{}", e.what());
+  }
+}
+
+void TilesNode::send(const StreamDecision& d) {
+  counters_.add("tiles_latched", d.new_for_vehicle.size() - std::min(d.new_for_vehicle.size(), d.publish.size()));
+  for (const twin::TileKey& key : d.publish) {
+    if (!publish_tile(key)) {
+      counters_.add("tiles_failed");
+      streamer_.publish_failed(key);  // the next update that needs it tries again
+    }
+  }
+}
+
+bool TilesNode::publish_tile(const twin::TileKey& key) {
+  const twin::TileInfo* info = streamer_.grid().find(key);
+  if (info == nullptr) return false;
+  std::shared_ptr<const EncodedTile> bytes;
+  try {
+    bytes = cache_.get(*info);
+  } catch (const InputError& e) {
+    spdlog::warn("tile {}: {}", streamer_.grid().wire_key(key), e.what());
+    return false;
+  }
+  msg::MapTile t;
+  t.tile_key(streamer_.grid().wire_key(key));
+  t.twin_id(streamer_.grid().index().twin_id);
+  const Eigen::Vector3d lo = info->bounds_W.min(), hi = info->bounds_W.max();
+  t.bounds_W() = {lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()};
+  t.triangles(static_cast<std::uint32_t>(info->triangles));
+  t.points(static_cast<std::uint32_t>(info->points));
+  t.mesh_draco(bytes->mesh_draco);
+  t.points_draco(bytes->points_draco);
+  if (!writer_.publish(t)) return false;
+  counters_.add("tiles_sent");
+  counters_.add("bytes_sent", bytes->bytes());
+  return true;
 }
 
 }  // namespace twinslam::tiles
