@@ -43,7 +43,8 @@ TEST(Ply, RoundTripsAsciiAndBothBinaryByteOrders) {
   Scratch tmp;
   const Mesh mesh = two_triangles();
   for (PlyFormat f : {PlyFormat::kAscii, PlyFormat::kBinaryLittleEndian, PlyFormat::kBinaryBigEndian}) {
-    const std::string path = (tmp / ("m" + std::to_string(static_cast<int>(f)) + ".ply")).string();
+    const char* name = f == PlyFormat::kAscii ? "a.ply" : f == PlyFormat::kBinaryLittleEndian ? "le.ply" : "be.ply";
+    const std::string path = (tmp / name).string();
     write_ply(path, mesh, f, GeoOrigin{52.0, 4.3, 12.5});
     const PlyFile back = read_ply(path);
     expect_same(mesh, back.mesh, 0.0);  // doubles written with 17 digits: exact in ascii too
@@ -181,4 +182,28 @@ TEST(Ply, MalformedFilesAreInputErrorsNamingFileAndReason) {
   LoadOptions options;
   options.crs = "EPSG:999999";
   expect_input_error([&] { load_twin_source(ok, options); }, ok, "EPSG:999999");
+}
+
+TEST(Ply, EveryTruncationOfAValidFileIsAnInputErrorNeverACrash) {
+  Scratch tmp;
+  Mesh mesh = two_triangles();
+  mesh.n_W.assign(mesh.p_W.size(), Eigen::Vector3d::UnitZ());
+  for (PlyFormat f : {PlyFormat::kAscii, PlyFormat::kBinaryBigEndian}) {
+    const std::string full_path = (tmp / "full.ply").string();
+    write_ply(full_path, mesh, f);
+    std::ifstream in(full_path, std::ios::binary);
+    const std::string full((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t errors = 0;
+    for (std::size_t cut = 0; cut < full.size(); ++cut) {
+      const std::string path = write_text(tmp / "cut.ply", full.substr(0, cut));
+      try {
+        read_ply(path);
+      } catch (const twinslam::InputError& e) {
+        ++errors;
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      }
+    }
+    // Ascii may lose only the final newline and still be whole; binary loses bytes on every cut.
+    EXPECT_GE(errors, full.size() - (f == PlyFormat::kAscii ? 1 : 0));
+  }
 }
