@@ -110,7 +110,19 @@ TEST(Geo, UnknownCrsIsAnInputErrorNamingIt) {
     CrsTransform bad("EPSG:999999");
     FAIL() << "no exception";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("EPSG:999999"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unknown CRS 'EPSG:999999': not in PROJ's database"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(CrsTransform("not a crs"), InputError);
+}
+
+TEST(Geo, GeographicCrsTakesLonLatOrder) {
+  // EPSG:4326 is (lat, lon) by definition; normalized for visualization the input is (lon, lat) like every other
+  // CRS's (easting, northing). A 2D geographic CRS keeps h as given.
+  const CrsTransform wgs84("EPSG:4326");
+  const Eigen::Vector3d lla = wgs84.to_lla({8.5417, 47.3769, 408.0});
+  EXPECT_NEAR(lla.x(), 47.3769, 1e-12);
+  EXPECT_NEAR(lla.y(), 8.5417, 1e-12);
+  EXPECT_NEAR(lla.z(), 408.0, 1e-9);
+  EXPECT_THROW(wgs84.to_lla({8.5, std::nan(""), 0.0}), InputError);
 }

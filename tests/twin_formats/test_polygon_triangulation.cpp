@@ -145,3 +145,21 @@ TEST(PolygonTriangulation, DegenerateInputGivesNothing) {
   bad.rings = {{0, 1, 7}};
   EXPECT_TRUE(triangulate_polygon(bad.points, bad.rings).empty());
 }
+
+TEST(PolygonTriangulation, SelfIntersectingAndRandomGarbageTerminatesWithValidIndices) {
+  // Invalid input (bow ties, random point soup, holes outside the outer ring) must never hang or index out of range.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> coord(-10.0, 10.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    Poly p;
+    std::vector<Eigen::Vector2d> outer, hole;
+    for (int i = 0; i < 3 + trial % 17; ++i) outer.emplace_back(coord(rng), coord(rng));
+    for (int i = 0; i < 3 + trial % 5; ++i) hole.emplace_back(coord(rng), coord(rng));
+    p.add_ring(outer);
+    if (trial % 2 == 0) p.add_ring(hole);
+    const auto tris = triangulate_polygon(p.points, p.rings);
+    EXPECT_LE(tris.size(), p.points.size() + 2 * p.rings.size());
+    for (const auto& t : tris)
+      for (int k = 0; k < 3; ++k) EXPECT_TRUE(t[k] >= 0 && t[k] < static_cast<int>(p.points.size()));
+  }
+}

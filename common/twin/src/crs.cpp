@@ -24,7 +24,10 @@ namespace {
 std::string proj_reason(PJ_CONTEXT* ctx) {
   const int err = proj_context_errno(ctx);
   const char* s = err != 0 ? proj_context_errno_string(ctx, err) : nullptr;
-  return s != nullptr ? s : "not recognised by PROJ";
+  // PROJ 9.1 reports an unknown EPSG code only as "Unknown error (code 4096)": say what it means.
+  if (s == nullptr || std::string(s).rfind("Unknown error", 0) == 0)
+    return "not in PROJ's database (proj.db) nor a valid CRS definition";
+  return s;
 }
 
 // Whether the best operation PROJ can run here (available grids only) uses a ballpark step.
