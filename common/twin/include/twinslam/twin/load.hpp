@@ -1,7 +1,8 @@
 #pragma once
 // Loading a digital twin from any supported source file into one Mesh in W. The format is chosen by extension
 // (and, for .json, by content: a 3D Tiles tileset has "asset"+"root", CityJSON has "type":"CityJSON").
-//   .ply .obj                    coordinates in --crs if given, else already in W
+//   .ply .obj                    coordinates in --crs if given, else already in W (a PLY whose header has
+//                                `comment twinslam_origin LAT LON ALT` is in the W of that origin: moved through ECEF)
 //   .glb .gltf                   glTF y-up converted to z-up; in W (a standalone model) — 3D Tiles content goes through
 //                                the tileset loader, which places it in ECEF
 //   tileset.json                 OGC 3D Tiles 1.0 / 1.1 (b3dm, glb content), ECEF -> W
