@@ -23,7 +23,7 @@ inline int expect_streamed_in_time(const TileGrid& grid, const std::vector<Eigen
                                    const std::map<twin::TileKey, Receipt>& received, double window_m = 150.0,
                                    double near_m = 75.0, double close_m = 50.0) {
   int near_tiles = 0;
-  for (const twin::TileInfo& info : grid.index().tiles) {
+  for (const TileRecord& info : grid.records()) {
     int first_near = -1, first_close = -1;
     for (int k = 0; k < static_cast<int>(positions.size()) && first_close < 0; ++k) {
       const double d = grid.distance_to_square(info.key, positions[k].head<2>());

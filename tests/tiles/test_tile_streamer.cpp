@@ -131,9 +131,30 @@ TEST(TileGrid, WireKeysRoundTrip) {
   EXPECT_FALSE(g.parse_wire_key(""));
   EXPECT_NEAR(g.distance_to_square({0, 0}, {25, 25}), 0.0, 1e-12);
   EXPECT_NEAR(g.distance_to_square({0, 0}, {53, 54}), 5.0, 1e-12);
+  // Content bounds come back in W to float precision relative to the tile's corner, even far from the origin.
+  const TileGrid far(test::grid_index(100, 101));
+  const Eigen::AlignedBox3d b = far.bounds_W(*far.find({101, 100}));
+  EXPECT_NEAR(b.min().x(), 5050.0, 1e-5);
+  EXPECT_NEAR(b.max().y(), 5050.0, 1e-5);
+  EXPECT_NEAR(b.max().z(), 30.0, 1e-5);
   twin::TwinIndex bad = test::grid_index(0, 1);
   bad.tile_size_m = 0;
   EXPECT_THROW(TileGrid{bad}, InputError);
+}
+
+TEST(TileGrid, SparseTwinWithoutACellTable) {
+  // Two 3 x 3 districts 50 km apart: a dense cell table would need a million cells; lookups still find each tile.
+  twin::TwinIndex index = test::grid_index(-1, 1);
+  for (const twin::TileInfo& info : test::grid_index(999, 1001).tiles) index.tiles.push_back(info);
+  const TileGrid g(index);
+  EXPECT_LT(g.memory_bytes(), 4096u);
+  EXPECT_NE(g.find({1000, 1001}), nullptr);
+  EXPECT_EQ(g.find({500, 500}), nullptr);
+  EXPECT_EQ(as_set(g.tiles_in({{50025, 50025}, 75})),
+            (std::set<TileKey>{{999, 999}, {999, 1000}, {999, 1001}, {1000, 999}, {1000, 1000}, {1000, 1001},
+                               {1001, 999}, {1001, 1000}, {1001, 1001}}));
+  EXPECT_EQ(g.tiles_in({{25, 25}, 75}).size(), 9u);
+  EXPECT_TRUE(g.tiles_in({{25000, 25000}, 75}).empty());
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ TEST(VehiclePositions, GnssBeforeOdometryIsAligned) {
 
 TEST(TileCache, KeepsTheMostRecentlyUsedTilesWithinCapacity) {
   std::map<TileKey, int> loads;
-  TileCache cache(2, [&](const twin::TileInfo& info) {
+  TileCache cache(2, [&](const TileRecord& info) {
     const TileKey& k = info.key;
     ++loads[k];
     if (k.ix < 0) throw InputError("tiles/" + std::to_string(k.ix) + "_0.mesh.drc: missing");
@@ -52,7 +52,7 @@ TEST(TileCache, KeepsTheMostRecentlyUsedTilesWithinCapacity) {
     return t;
   });
   auto get = [&](int ix) {
-    twin::TileInfo info;
+    TileRecord info;
     info.key = {ix, 0};
     return cache.get(info);
   };

@@ -151,13 +151,16 @@ TEST_F(TilesNodeTest, GnssThenOdometryStreamsEveryNearTileInTimeOnce) {
   EXPECT_GT(counters.get("gnss_in"), 0u);
   unsigned long long bytes = 0;
   for (const auto& [key, m] : log.tiles) {
-    const twin::TileInfo* info = grid.find(key);
+    const twin::TileInfo* info = city_->index.find(key);
     ASSERT_NE(info, nullptr);
     EXPECT_EQ(m.twin_id(), city_->index.twin_id);
     EXPECT_EQ(m.triangles(), info->triangles);
     EXPECT_EQ(m.points(), info->points);
     EXPECT_EQ(m.mesh_draco(), twin::read_tile_file(city_->twin_dir, key, false));
-    EXPECT_NEAR(m.bounds_W()[3], info->bounds_W.max().x(), 1e-9);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(m.bounds_W()[i], info->bounds_W.min()[i], 1e-4);
+      EXPECT_NEAR(m.bounds_W()[3 + i], info->bounds_W.max()[i], 1e-4);
+    }
     bytes += m.mesh_draco().size() + m.points_draco().size();
   }
   EXPECT_EQ(counters.get("bytes_sent"), bytes);

@@ -12,10 +12,10 @@ TilesNode::TilesNode(dds::Node& node, dds::Counters& counters, const TilesConfig
       counters_(counters),
       streamer_(twin::read_twin_index(config.twin_dir), config.window_m),
       cache_(static_cast<std::size_t>(config.cache_tiles), TileCache::store_loader(config.twin_dir)),
-      enu_(streamer_.grid().index().origin),
+      enu_(streamer_.grid().origin()),
       writer_(node.writer<msg::MapTile>(dds::topics::kMapTile)) {
-  spdlog::info("twin '{}' from {}: {} tiles of {} m, window {} m", streamer_.grid().index().twin_id, config.twin_dir,
-               streamer_.grid().index().tiles.size(), streamer_.grid().tile_size_m(), config.window_m);
+  spdlog::info("twin '{}' from {}: {} tiles of {} m, window {} m", streamer_.grid().twin_id(), config.twin_dir,
+               streamer_.grid().records().size(), streamer_.grid().tile_size_m(), config.window_m);
   node.subscribe<msg::Odometry>(dds::topics::kOdometry, [this](const msg::Odometry& m) { on_odometry(m); });
   node.subscribe<msg::GnssFix>(dds::topics::kGnss, [this](const msg::GnssFix& m) { on_gnss(m); });
   node.subscribe<msg::TileRequest>(dds::topics::kTileRequest, [this](const msg::TileRequest& m) { on_request(m); });
@@ -78,7 +78,7 @@ void TilesNode::send(const StreamDecision& d) {
 }
 
 bool TilesNode::publish_tile(const twin::TileKey& key) {
-  const twin::TileInfo* info = streamer_.grid().find(key);
+  const TileRecord* info = streamer_.grid().find(key);
   if (info == nullptr) return false;
   std::shared_ptr<const EncodedTile> bytes;
   try {
@@ -89,11 +89,12 @@ bool TilesNode::publish_tile(const twin::TileKey& key) {
   }
   msg::MapTile t;
   t.tile_key(streamer_.grid().wire_key(key));
-  t.twin_id(streamer_.grid().index().twin_id);
-  const Eigen::Vector3d lo = info->bounds_W.min(), hi = info->bounds_W.max();
+  t.twin_id(streamer_.grid().twin_id());
+  const Eigen::AlignedBox3d box_W = streamer_.grid().bounds_W(*info);
+  const Eigen::Vector3d lo = box_W.min(), hi = box_W.max();
   t.bounds_W() = {lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()};
-  t.triangles(static_cast<std::uint32_t>(info->triangles));
-  t.points(static_cast<std::uint32_t>(info->points));
+  t.triangles(info->triangles);
+  t.points(info->points);
   t.mesh_draco(bytes->mesh_draco);
   t.points_draco(bytes->points_draco);
   if (!writer_.publish(t)) return false;

@@ -7,7 +7,7 @@ namespace twinslam::tiles {
 TileCache::TileCache(std::size_t capacity, Loader loader)
     : capacity_(std::max<std::size_t>(capacity, 1)), loader_(std::move(loader)) {}
 
-std::shared_ptr<const EncodedTile> TileCache::get(const twin::TileInfo& info) {
+std::shared_ptr<const EncodedTile> TileCache::get(const TileRecord& info) {
   const twin::TileKey& key = info.key;
   if (const auto it = by_key_.find(key); it != by_key_.end()) {
     ++hits_;

@@ -4,7 +4,7 @@
 namespace twinslam::tiles {
 
 TileCache::Loader TileCache::store_loader(const std::string& twin_dir) {
-  return [twin_dir](const twin::TileInfo& info) {
+  return [twin_dir](const TileRecord& info) {
     EncodedTile t;
     if (info.triangles > 0) t.mesh_draco = twin::read_tile_file(twin_dir, info.key, false);
     if (info.points > 0) t.points_draco = twin::read_tile_file(twin_dir, info.key, true);

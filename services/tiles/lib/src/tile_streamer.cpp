@@ -7,8 +7,8 @@
 
 namespace twinslam::tiles {
 
-TileStreamer::TileStreamer(twin::TwinIndex index, double window_m)
-    : grid_(std::move(index)), half_size_m_(0.5 * window_m) {}
+TileStreamer::TileStreamer(const twin::TwinIndex& index, double window_m)
+    : grid_(index), half_size_m_(0.5 * window_m) {}
 
 void TileStreamer::sort_nearest(std::vector<twin::TileKey>* keys, const Eigen::Vector2d& p_W) const {
   // Nearest first: if the link is slow, the tile under the vehicle arrives before the window's corners.

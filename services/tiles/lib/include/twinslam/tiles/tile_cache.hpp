@@ -22,7 +22,7 @@ struct EncodedTile {
 
 class TileCache {
  public:
-  using Loader = std::function<EncodedTile(const twin::TileInfo&)>;
+  using Loader = std::function<EncodedTile(const TileRecord&)>;
   // Reads a tile's Draco files from a twin store (twin::read_tile_file; throws InputError if missing). The store
   // writes no mesh file for a tile without triangles and no points file for one without points: those stay empty.
   static Loader store_loader(const std::string& twin_dir);
@@ -31,7 +31,7 @@ class TileCache {
   TileCache(std::size_t capacity, Loader loader);
 
   // The tile's bytes, loaded on a miss (the loader's InputError passes through and nothing is cached).
-  std::shared_ptr<const EncodedTile> get(const twin::TileInfo& info);
+  std::shared_ptr<const EncodedTile> get(const TileRecord& info);
 
   std::size_t size() const { return entries_.size(); }
   std::size_t bytes() const { return bytes_; }  // encoded bytes held

@@ -28,7 +28,7 @@ struct StreamDecision {
 class TileStreamer {
  public:
   // window_m: side of the square window [m] (TilesConfig::window_m, validated there).
-  TileStreamer(twin::TwinIndex index, double window_m);
+  TileStreamer(const twin::TwinIndex& index, double window_m);
 
   // A new position p_W of `vehicle` [m, W] (height ignored: tiles hold all heights).
   StreamDecision update(const std::string& vehicle, const Eigen::Vector3d& p_W);
