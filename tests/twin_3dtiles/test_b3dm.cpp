@@ -1,6 +1,7 @@
 // b3dm: the validator's valid / invalid samples, legacy headers, feature and batch tables, truncation.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <set>
 
 #include "tiles_test_utils.hpp"
@@ -97,4 +98,30 @@ TEST(B3dm, TruncatedOrCorruptedBytesThrowNeverCrash) {
   }
   // A plain cut (byteLength still the original): truncation named as such.
   expect_input_error([&] { parse({valid.begin(), valid.end() - 100}); }, {"tile.b3dm", "truncated"});
+}
+
+TEST(B3dm, RandomByteCorruptionNeverCrashes) {
+  // Byte flips in the header, the tables, the glb's JSON and its binary chunk: every parse ends in a mesh (whose
+  // indices are valid) or an InputError naming the file, never in a crash or another exception.
+  const std::vector<std::uint8_t> valid = bytes_of(sample("cesium-validator/valid.b3dm"));
+  std::mt19937 rng(11);
+  int errors = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    std::vector<std::uint8_t> b = valid;
+    const int flips = 1 + static_cast<int>(rng() % 4);
+    for (int k = 0; k < flips; ++k) {
+      // Half the flips hit the text parts (header, tables, glTF JSON: the first ~2.2 kB), where structure lives.
+      const std::size_t at = rng() % 2 == 0 ? rng() % 2200 : rng() % b.size();
+      b[at] = static_cast<std::uint8_t>(rng());
+    }
+    try {
+      const B3dmContent c = parse(b);
+      const auto n = static_cast<int>(c.gltf.mesh.num_vertices());
+      for (const Eigen::Vector3i& t : c.gltf.mesh.triangles) ASSERT_TRUE((t.array() >= 0).all() && (t.array() < n).all());
+    } catch (const twinslam::InputError& e) {
+      ++errors;
+      ASSERT_NE(std::string(e.what()).find("tile.b3dm"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_GT(errors, 100);
 }

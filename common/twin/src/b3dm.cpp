@@ -59,9 +59,7 @@ void check_aligned(std::uint64_t offset, const char* what, const std::string& na
   }
 }
 
-}  // namespace
-
-B3dmContent parse_b3dm(const std::uint8_t* d, std::size_t size, const std::string& name, B3dmCheck check) {
+B3dmContent parse_checked(const std::uint8_t* d, std::size_t size, const std::string& name, B3dmCheck check) {
   if (d == nullptr || size < 12) throw InputError(where(name, 0, "b3dm header truncated (" + std::to_string(size) + " bytes)"));
   if (!(d[0] == 'b' && d[1] == '3' && d[2] == 'd' && d[3] == 'm')) throw InputError(where(name, 0, "bad b3dm magic (expected 'b3dm')"));
   const std::uint32_t version = u32(d + 4);
@@ -124,6 +122,16 @@ B3dmContent parse_b3dm(const std::uint8_t* d, std::size_t size, const std::strin
     }
   }
   return out;
+}
+
+}  // namespace
+
+B3dmContent parse_b3dm(const std::uint8_t* d, std::size_t size, const std::string& name, B3dmCheck check) {
+  try {
+    return parse_checked(d, size, name, check);
+  } catch (const nlohmann::json::exception& e) {  // a table value of an unexpected JSON type
+    throw InputError(where(name, 0, std::string("b3dm table JSON: ") + e.what()));
+  }
 }
 
 B3dmContent load_b3dm_file(const std::string& path, B3dmCheck check) {

@@ -156,25 +156,33 @@ GltfContent load_gltf_content(const std::uint8_t* data, std::size_t size, const 
   std::string err;
   std::string warn;
   bool ok = false;
-  if (detail::looks_like_glb(data, size)) {
-    const detail::GlbChunks chunks = detail::check_glb(data, size, name);
-    const auto prepared = detail::drop_draco_indices(data, size, &chunks);
-    const std::uint8_t* bytes = prepared ? prepared->data() : data;
-    const std::size_t length = prepared ? prepared->size() : chunks.length;
-    if (length > std::numeric_limits<unsigned int>::max()) throw InputError(where(name, 0, "glTF larger than 4 GiB"));
-    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes, static_cast<unsigned int>(length), base_dir);
-  } else {
-    std::size_t first = 0;
-    while (first < size && std::isspace(data[first]) != 0) ++first;
-    if (first == size || data[first] != '{') {
-      throw InputError(where(name, 0, "neither binary glTF (magic 'glTF') nor JSON glTF"));
+  // tinygltf reports most problems through `err`, but some malformed files make it throw (std::vector::at in
+  // ParseBuffer, found by byte-flipping a GLB): those are bad input too.
+  try {
+    if (detail::looks_like_glb(data, size)) {
+      const detail::GlbChunks chunks = detail::check_glb(data, size, name);
+      const auto prepared = detail::drop_draco_indices(data, size, &chunks);
+      const std::uint8_t* bytes = prepared ? prepared->data() : data;
+      const std::size_t length = prepared ? prepared->size() : chunks.length;
+      if (length > std::numeric_limits<unsigned int>::max()) throw InputError(where(name, 0, "glTF larger than 4 GiB"));
+      ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes, static_cast<unsigned int>(length), base_dir);
+    } else {
+      std::size_t first = 0;
+      while (first < size && std::isspace(data[first]) != 0) ++first;
+      if (first == size || data[first] != '{') {
+        throw InputError(where(name, 0, "neither binary glTF (magic 'glTF') nor JSON glTF"));
+      }
+      const auto prepared = detail::drop_draco_indices(data, size, nullptr);
+      const std::uint8_t* bytes = prepared ? prepared->data() : data;
+      const std::size_t length = prepared ? prepared->size() : size;
+      if (length > std::numeric_limits<unsigned int>::max()) throw InputError(where(name, 0, "glTF larger than 4 GiB"));
+      ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes),
+                                      static_cast<unsigned int>(length), base_dir);
     }
-    const auto prepared = detail::drop_draco_indices(data, size, nullptr);
-    const std::uint8_t* bytes = prepared ? prepared->data() : data;
-    const std::size_t length = prepared ? prepared->size() : size;
-    if (length > std::numeric_limits<unsigned int>::max()) throw InputError(where(name, 0, "glTF larger than 4 GiB"));
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes),
-                                    static_cast<unsigned int>(length), base_dir);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(where(name, 0, std::string("glTF: malformed (") + e.what() + ")"));
   }
   if (!ok) {
     std::string reason = err.empty() ? "not a valid glTF" : err;
