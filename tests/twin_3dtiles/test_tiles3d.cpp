@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
+#include <random>
 #include <numbers>
 
 #include "tiles_test_utils.hpp"
@@ -224,4 +226,34 @@ TEST(Tiles3d, MalformedTilesetThrowsWithTheReason) {
   expect(tileset(tile(1, "", R"(,"refine":"MERGE")")), "refine 'MERGE'");
   expect(tileset(tile(1, "", R"(,"children":[{"geometricError":0}])")), "root/0: boundingVolume missing");
   expect_input_error([] { load_3dtiles("/nonexistent/tileset.json", options(), nullptr); }, {"/nonexistent/tileset.json", "cannot open"});
+}
+
+TEST(Tiles3d, CorruptedTilesetTextNeverCrashes) {
+  // Characters of the sample root tileset replaced at random (it references the real city / building files by
+  // absolute path): each load returns a mesh or throws InputError naming the tileset, nothing else.
+  Scratch tmp("fuzz");
+  std::ifstream in(sample("cesium-samples/TilesetWithRequestVolume/tileset.json"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string dir = sample("cesium-samples/TilesetWithRequestVolume/");
+  for (const char* uri : {"city/tileset.json", "building.b3dm", "points.pnts"}) {
+    const std::size_t at = text.find(uri);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::strlen(uri), dir + uri);
+  }
+  const char* tokens[] = {"-1", "0", "1e400", "\"x\"", "[", "]", "{", "}", ",", "null", "[1,2]", "{}", "true"};
+  std::mt19937 rng(5);
+  int errors = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    std::string t = text;
+    for (int k = 0; k < 2; ++k) t.replace(rng() % t.size(), 1 + rng() % 3, tokens[rng() % std::size(tokens)]);
+    write_text(tmp.path("t.json"), t);
+    try {
+      LoadReport report;
+      load_3dtiles(tmp.path("t.json"), options(), &report);
+    } catch (const twinslam::InputError& e) {
+      ++errors;
+      ASSERT_NE(std::string(e.what()).find("t.json"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_GT(errors, 50);
 }
