@@ -12,5 +12,6 @@ void add_run_command(CLI::App& app, int& exit_code);     // cmd_run.cpp
 void add_eval_command(CLI::App& app, int& exit_code);    // cmd_eval.cpp
 void add_sim_command(CLI::App& app, int& exit_code);     // cmd_sim.cpp
 void add_bench_command(CLI::App& app, int& exit_code);   // cmd_bench.cpp
+void add_twin_command(CLI::App& app, int& exit_code);    // cmd_twin.cpp
 
 }  // namespace twinslam::cli
