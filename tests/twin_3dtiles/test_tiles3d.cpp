@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 #include <random>
+#include <sstream>
 #include <numbers>
 
 #include "tiles_test_utils.hpp"
@@ -256,4 +257,44 @@ TEST(Tiles3d, CorruptedTilesetTextNeverCrashes) {
     }
   }
   EXPECT_GT(errors, 50);
+}
+
+TEST(Tiles3d, GltfContentIsTurnedZUpAndPlacedWithCesiumRtc) {
+  // A 1.1 tileset with two glTF contents of one triangle (0,0,0) (1,0,0) (0,1,0) (y-up model frame, buffer in an
+  // external .bin next to the content), under a tile transform that maps the tile frame onto W's axes at W's
+  // origin. y-up -> z-up turns model +y into up; the second content's CESIUM_RTC center (10, 20, 30), given z-up,
+  // moves it by exactly that in W.
+  Scratch tmp("gltf_content");
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::vector<std::uint8_t> bin(sizeof(xyz));
+  std::memcpy(bin.data(), xyz, sizeof(xyz));
+  write_bytes(tmp.path("tri.bin"), bin);
+  auto gltf = [](const std::string& extra) {
+    return R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+           R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
+           R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,"uri":"tri.bin"}])" + extra + "}";
+  };
+  write_text(tmp.path("plain.gltf"), gltf(""));
+  write_text(tmp.path("rtc.gltf"), gltf(R"(,"extensionsUsed":["CESIUM_RTC"],"extensions":{"CESIUM_RTC":{"center":[10,20,30]}})"));
+  const EnuFrame enu(kOrigin);
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();  // tile frame = W axes, at W's origin, in ECEF
+  T.topLeftCorner<3, 3>() = enu.R_W_ECEF().transpose();
+  T.topRightCorner<3, 1>() = enu.to_ecef(Eigen::Vector3d::Zero());
+  std::ostringstream transform;
+  transform.precision(17);
+  for (int i = 0; i < 16; ++i) transform << (i ? "," : "[") << T(i % 4, i / 4);
+  transform << "]";
+  const std::string children = R"(,"refine":"ADD","transform":)" + transform.str() + R"(,"children":[)" +
+                               tile(0, "plain.gltf") + "," + tile(0, "rtc.gltf") + "]";
+  write_text(tmp.path("tileset.json"), tileset(tile(1, "", children)));
+  LoadReport report;
+  const Mesh m = load_3dtiles(tmp.path("tileset.json"), options(), &report);
+  EXPECT_EQ(report.parts_loaded, 2u);
+  ASSERT_EQ(m.num_vertices(), 6u);
+  const Eigen::Vector3d expected[3] = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT((m.p_W[i] - expected[i]).norm(), 1e-6) << i;
+    EXPECT_LT((m.p_W[i + 3] - expected[i] - Eigen::Vector3d(10, 20, 30)).norm(), 1e-6) << i;
+  }
 }
