@@ -298,3 +298,39 @@ TEST(Tiles3d, GltfContentIsTurnedZUpAndPlacedWithCesiumRtc) {
     EXPECT_LT((m.p_W[i + 3] - expected[i] - Eigen::Vector3d(10, 20, 30)).norm(), 1e-6) << i;
   }
 }
+
+TEST(Tiles3d, CompositeTilesLoadTheirB3dmAndReportThePointCloud) {
+  // A cmpt of ll.b3dm, lr.b3dm and points.pnts (each padded to 8 bytes, its byteLength patched to the padded size)
+  // gives the same mesh as ll + lr loaded as separate tiles; the point cloud is listed as skipped.
+  Scratch tmp("cmpt");
+  const std::string dir = sample("cesium-samples/TilesetWithRequestVolume/");
+  std::vector<std::uint8_t> cmpt = {'c', 'm', 'p', 't', 1, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0};  // version 1, 3 tiles
+  for (const char* f : {"city/ll.b3dm", "city/lr.b3dm", "points.pnts"}) {
+    std::vector<std::uint8_t> inner = bytes_of(dir + f);
+    inner.resize((inner.size() + 7) / 8 * 8, 0);
+    put_u32(inner, 8, static_cast<std::uint32_t>(inner.size()));
+    cmpt.insert(cmpt.end(), inner.begin(), inner.end());
+  }
+  put_u32(cmpt, 8, static_cast<std::uint32_t>(cmpt.size()));
+  write_bytes(tmp.path("city.cmpt"), cmpt);
+  std::vector<std::uint8_t> broken = cmpt;
+  put_u32(broken, 12, 1u << 30);
+  write_bytes(tmp.path("broken.cmpt"), broken);
+  write_text(tmp.path("cmpt.json"), tileset(tile(0, "city.cmpt")));
+  write_text(tmp.path("separate.json"), tileset(tile(1, "", R"(,"refine":"ADD","children":[)" + tile(0, dir + "city/ll.b3dm") +
+                                                                "," + tile(0, dir + "city/lr.b3dm") + "]")));
+  write_text(tmp.path("broken.json"), tileset(tile(0, "broken.cmpt")));
+  LoadReport report;
+  const Mesh composite = load_3dtiles(tmp.path("cmpt.json"), options(), &report);
+  const Mesh separate = load_3dtiles(tmp.path("separate.json"), options(), nullptr);
+  EXPECT_EQ(report.parts_loaded, 1u);
+  ASSERT_EQ(report.rejected.size(), 1u);
+  EXPECT_NE(report.rejected[0].find("city.cmpt [inner tile 2]: pnts content not supported"), std::string::npos) << report.rejected[0];
+  ASSERT_EQ(composite.num_vertices(), separate.num_vertices());
+  EXPECT_EQ(composite.triangles, separate.triangles);
+  for (std::size_t i = 0; i < composite.num_vertices(); ++i) ASSERT_LT((composite.p_W[i] - separate.p_W[i]).norm(), 1e-9);
+  LoadReport bad;
+  EXPECT_TRUE(load_3dtiles(tmp.path("broken.json"), options(), &bad).empty());
+  ASSERT_EQ(bad.rejected.size(), 1u);
+  EXPECT_NE(bad.rejected[0].find("broken.cmpt: cmpt tilesLength 1073741824 is implausible"), std::string::npos) << bad.rejected[0];
+}

@@ -53,7 +53,7 @@ inline void expect_input_error(const std::function<void()>& f, const std::vector
 }
 
 inline void put_u32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) b[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(v >> (8 * i));
+  for (int i = 0; i < 4; ++i) b.at(at + static_cast<std::size_t>(i)) = static_cast<std::uint8_t>(v >> (8 * i));
 }
 inline std::uint32_t get_u32(const std::vector<std::uint8_t>& b, std::size_t at) {
   std::uint32_t v = 0;

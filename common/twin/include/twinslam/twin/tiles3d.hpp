@@ -9,8 +9,9 @@
 // geometricError <= tau (or a leaf) contributes its content and stops the descent (the coarsest tiles good enough;
 // tau = 0 gives the leaves); a coarser tile with REPLACE gives its place to its children, with ADD it keeps its own
 // content and adds theirs. A tile whose content is an external tileset always descends into it.
-// Content: b3dm and glb / glTF. pnts (point clouds), i3dm, cmpt and implicit tiling are NOT loaded: each such tile
-// is listed in LoadReport::rejected with "not supported" so the user knows what is missing.
+// Content: b3dm, glb / glTF, and cmpt composites of these (recursively). pnts (point clouds), i3dm and implicit
+// tiling are NOT loaded: each such tile (or inner tile) is listed in LoadReport::rejected with "not supported" so
+// the user knows what is missing.
 // Placement of a content vertex p (glTF model frame, y-up, node transforms applied), as the 3D Tiles spec orders it:
 //   p_tile = Y_UP_TO_Z_UP * p  (+90 deg about X: (x, y, z) -> (x, -z, y))  + RTC_CENTER (b3dm, z-up)
 //   p_ECEF = T_tile (accumulated transform) * p_tile;   p_W = EnuFrame(origin).from_ecef(p_ECEF)
@@ -42,9 +43,11 @@ std::vector<TileContentRef> select_3dtiles_contents(const std::string& tileset_j
                                                     LoadReport* report);
 
 // One content placed in W. batch_id (optional) receives the per-vertex batch ids of b3dm content (empty if none),
-// batch_table the b3dm batch table. Throws InputError naming the file and problem.
+// batch_table the b3dm batch table (for a cmpt: those of its last b3dm, ids not offset: use them on b3dm content).
+// Unsupported inner tiles of a cmpt are skipped with a line in report->rejected. Throws InputError naming the file
+// and problem.
 Mesh load_tile_content(const TileContentRef& content, const EnuFrame& enu, std::vector<std::uint32_t>* batch_id = nullptr,
-                       BatchTable* batch_table = nullptr);
+                       BatchTable* batch_table = nullptr, LoadReport* report = nullptr);
 
 Mesh load_3dtiles(const std::string& tileset_json, const LoadOptions& options, LoadReport* report);
 
