@@ -1,9 +1,9 @@
 // Twin store speed (issue 7): Draco encode / decode of one 50 m tile of the procedural city (the tiles service decodes
 // on request, the map-matching side per tile in view), as mesh and as sampled points; plus the whole store build.
+#include <benchmark/benchmark.h>
+
 #include <algorithm>
 #include <filesystem>
-
-#include <benchmark/benchmark.h>
 
 #include "twinslam/sim/world/city.hpp"
 #include "twinslam/sim/world/twin.hpp"
@@ -85,8 +85,9 @@ void BM_DecodePointsTile(benchmark::State& state) {
 void BM_BuildStore(benchmark::State& state) {
   const auto dir = std::filesystem::temp_directory_path() / ("bench_twin_store_" + std::to_string(::getpid()));
   twin::TwinIndex index;
-  for (auto _ : state) index = twin::build_twin_store(city_twin(), twin::GeoOrigin{47.3769, 8.5417, 408.0},
-                                                      twin::StoreConfig{}, dir.string());
+  for (auto _ : state)
+    index =
+        twin::build_twin_store(city_twin(), twin::GeoOrigin{47.3769, 8.5417, 408.0}, twin::StoreConfig{}, dir.string());
   std::filesystem::remove_all(dir);
   state.counters["tiles"] = static_cast<double>(index.tiles.size());
   state.counters["triangles"] = static_cast<double>(index.triangles);

@@ -1,9 +1,9 @@
 // Draco round trip of tiles (store.hpp): the issue's acceptance point "decoded tile vertices within the Draco
 // quantization error (<= 1 mm at the chosen setting)", for a tile far from the origin, and corrupt bytes.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "test_meshes.hpp"
 #include "twinslam/core/error.hpp"

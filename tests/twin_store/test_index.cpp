@@ -1,8 +1,8 @@
 // Building a twin store, index.json write/read and its validation, loading tiles (store.hpp).
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "test_meshes.hpp"

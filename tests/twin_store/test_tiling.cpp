@@ -1,7 +1,7 @@
 // Cutting by the tile grid and the point sampling of the twin store (tiling.hpp).
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "test_meshes.hpp"
 #include "twinslam/core/error.hpp"
@@ -52,7 +52,8 @@ TEST(TwinTiling, LargeTriangleSplitsOverAllTilesItCoversHeightsNeverCut) {
   EXPECT_FALSE(tiles.count(TileKey{2, 1}) || tiles.count(TileKey{1, 2}) || tiles.count(TileKey{2, 2}));
   // Normals of the pieces are the triangle's: clipping keeps the winding.
   for (const auto& [key, t] : tiles) {
-    for (std::size_t i = 0; i < t.num_triangles(); ++i) EXPECT_GT(t.triangle_normal(i).dot(m.triangle_normal(0)), 0.999999);
+    for (std::size_t i = 0; i < t.num_triangles(); ++i)
+      EXPECT_GT(t.triangle_normal(i).dot(m.triangle_normal(0)), 0.999999);
   }
 }
 

@@ -1,8 +1,8 @@
 // `twinslam twin build / info` end to end (CONTRACTS.md "twinslam twin info --json"), running the built executable.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "subprocess.hpp"
@@ -111,9 +111,9 @@ TEST_F(TwinCli, BadUsageAndInputExitTwoWithOneLine) {
   expect_bad_input(
       twinslam({"twin", "build", (dir_ / "nope.ply").string(), "--origin", "47,8,400", "--out", twin.string()}),
       "nope.ply");
-  expect_bad_input(twinslam({"twin", "build", ply.string(), "--origin", "47,8,400", "--out", twin.string(),
-                             "--tile-size", "0"}),
-                   "tile size");
+  expect_bad_input(
+      twinslam({"twin", "build", ply.string(), "--origin", "47,8,400", "--out", twin.string(), "--tile-size", "0"}),
+      "tile size");
   expect_bad_input(twinslam({"twin", "info", (dir_ / "missing").string()}), "index.json");
   EXPECT_EQ(twinslam({"twin", "build", ply.string(), "--out", twin.string()}).exit_code, 2);  // --origin required
   EXPECT_FALSE(fs::exists(twin / "index.json"));

@@ -4,11 +4,10 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "twin_preview.hpp"
@@ -96,12 +95,13 @@ int run_info(const InfoOptions& o) {
     std::cout << j.dump() << std::endl;  // one object, one line: scripts parse stdout
     return kExitOk;
   }
-  std::printf("twin %s: id %s, origin %.7f, %.7f, %.3f m\n", o.dir.c_str(), index.twin_id.c_str(),
-              index.origin.lat_deg, index.origin.lon_deg, index.origin.alt_m);
+  std::printf("twin %s: id %s, origin %.7f, %.7f, %.3f m\n", o.dir.c_str(), index.twin_id.c_str(), index.origin.lat_deg,
+              index.origin.lon_deg, index.origin.alt_m);
   std::printf("extent %s\n", box_text(b).c_str());
   std::printf("tiles %zu of %.0f m, triangles %zu, points %zu (spacing %.2f m), %.1f MB\n", index.tiles.size(),
               index.tile_size_m, index.triangles, index.points, index.point_spacing_m, bytes / 1e6);
-  if (preview_size) std::printf("preview %s (%d x %d px)\n", o.preview.c_str(), preview_size->first, preview_size->second);
+  if (preview_size)
+    std::printf("preview %s (%d x %d px)\n", o.preview.c_str(), preview_size->first, preview_size->second);
   return kExitOk;
 }
 
@@ -113,8 +113,9 @@ void add_twin_command(CLI::App& app, int& exit_code) {
 
   auto b = std::make_shared<BuildOptions>();
   CLI::App* build = twin->add_subcommand(
-      "build", "Load twin sources (PLY, OBJ, glTF/GLB, 3D Tiles tileset.json, CityJSON, OSM XML) into W and write the "
-               "tiled, Draco-compressed store");
+      "build",
+      "Load twin sources (PLY, OBJ, glTF/GLB, 3D Tiles tileset.json, CityJSON, OSM XML) into W and write the "
+      "tiled, Draco-compressed store");
   build->add_option("SRC", b->sources, "Source files (appended into one twin)")->required()->type_name("SRC...");
   build->add_option("--origin", b->origin, "Origin of W: WGS84 latitude, longitude [deg], ellipsoidal height [m]")
       ->required()
@@ -128,8 +129,9 @@ void add_twin_command(CLI::App& app, int& exit_code) {
   build->add_option("--position-bits", b->store.position_bits, "Draco position quantization [bits]")
       ->capture_default_str();
   build->add_option("--seed", b->store.seed, "Seed of the point sampling")->capture_default_str();
-  build->add_option("--max-geometric-error", b->max_geometric_error_m,
-                    "3D Tiles: use the finest level whose geometricError is >= M (0 = leaves) [m]")
+  build
+      ->add_option("--max-geometric-error", b->max_geometric_error_m,
+                   "3D Tiles: use the finest level whose geometricError is >= M (0 = leaves) [m]")
       ->type_name("M")
       ->capture_default_str();
   build->callback([b, &exit_code] { exit_code = run_build(*b); });

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -29,7 +28,7 @@ struct Canvas {
 };
 
 struct Shape {
-  double height_m;               // sort key: highest drawn last
+  double height_m;                 // sort key: highest drawn last
   std::vector<cv::Point> corners;  // 3 for a triangle, 1 for a point
   double colour_u_m;
 };
@@ -65,7 +64,8 @@ std::pair<int, int> write_twin_preview(const std::string& twin_dir, const twin::
       for (const Eigen::Vector3d& p : tile.points_W.p_W) shapes.push_back({p.z(), {c.px(p)}, p.z()});
     }
   }
-  std::stable_sort(shapes.begin(), shapes.end(), [](const Shape& a, const Shape& b) { return a.height_m < b.height_m; });
+  std::stable_sort(shapes.begin(), shapes.end(),
+                   [](const Shape& a, const Shape& b) { return a.height_m < b.height_m; });
   for (const Shape& s : shapes) {
     if (s.corners.size() == 1) {
       cv::circle(image, s.corners[0], 0, c.colour(s.colour_u_m), cv::FILLED);  // one pixel

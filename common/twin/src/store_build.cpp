@@ -71,16 +71,17 @@ TwinIndex build_twin_store(const Mesh& mesh_W, const GeoOrigin& origin, const St
   index.point_spacing_m = config.point_spacing_m;
   index.extent_W = mesh_W.bounds();
   Fnv1a id;
-  for (const double v : {origin.lat_deg, origin.lon_deg, origin.alt_m}) id.add(&v, sizeof v);  // another origin: another twin
+  for (const double v : {origin.lat_deg, origin.lon_deg, origin.alt_m})
+    id.add(&v, sizeof v);  // another origin: another twin
   id.add(&config.tile_size_m, sizeof config.tile_size_m);
   std::set<TileKey> keys;
   for (const auto& [key, m] : meshes) keys.insert(key);
   for (const auto& [key, p] : given_points) keys.insert(key);
   for (const TileKey& key : keys) {  // std::set: sorted, so the index and the id are in key order
     const auto mesh_it = meshes.find(key);
-    const Mesh points = point_source ? given_points.at(key)
-                                     : sample_points(mesh_it->second, config.point_spacing_m, config.seed,
-                                                     tile_stream(key));
+    const Mesh points = point_source
+                            ? given_points.at(key)
+                            : sample_points(mesh_it->second, config.point_spacing_m, config.seed, tile_stream(key));
     TileInfo info;
     info.key = key;
     info.origin_W = tile_origin_W(key, config.tile_size_m);
@@ -133,8 +134,9 @@ Tile load_tile(const std::string& twin_dir, const TwinIndex& index, const TileKe
     Mesh m = decode_draco(bytes.data(), bytes.size(), file);
     const std::size_t got = points ? m.p_W.size() : m.triangles.size();
     if (got != expected || (points && m.n_W.size() != m.p_W.size())) {
-      throw InputError(where(file, 0, "holds " + std::to_string(got) + (points ? " points" : " triangles") +
-                                          ", index.json says " + std::to_string(expected)));
+      throw InputError(where(file, 0,
+                             "holds " + std::to_string(got) + (points ? " points" : " triangles") +
+                                 ", index.json says " + std::to_string(expected)));
     }
     (points ? tile.points_W : tile.mesh_W) = std::move(m);
   }

@@ -31,8 +31,8 @@ Eigen::Vector3d tile_origin_W(const TileKey& key, double tile_size_m) {
 }
 
 const TileInfo* TwinIndex::find(const TileKey& key) const {
-  const auto it = std::lower_bound(tiles.begin(), tiles.end(), key,
-                                   [](const TileInfo& t, const TileKey& k) { return t.key < k; });
+  const auto it =
+      std::lower_bound(tiles.begin(), tiles.end(), key, [](const TileInfo& t, const TileKey& k) { return t.key < k; });
   return it != tiles.end() && it->key == key ? &*it : nullptr;
 }
 

@@ -1,14 +1,14 @@
 // Draco encoding and decoding of a tile's mesh and point set (store.hpp). Positions are written relative to an origin
 // (float32 keeps ~0.5 mm at 5 km but ~4 um at 50 m) and that origin travels in the file's geometry metadata.
-#include <cmath>
-#include <memory>
-#include <string>
-
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 #include <draco/metadata/geometry_metadata.h>
 #include <draco/point_cloud/point_cloud_builder.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
 
 #include "twinslam/core/error.hpp"
 #include "twinslam/twin/store.hpp"
@@ -20,7 +20,8 @@ constexpr const char* kOriginKey = "twinslam_origin_W";  // metadata entry: 3 do
 
 void check_finite(const std::vector<Eigen::Vector3d>& v, const std::string& what) {
   for (std::size_t i = 0; i < v.size(); ++i) {
-    if (!v[i].allFinite()) throw InputError(where("draco encode", 0, what + " " + std::to_string(i) + " is not finite"));
+    if (!v[i].allFinite())
+      throw InputError(where("draco encode", 0, what + " " + std::to_string(i) + " is not finite"));
   }
 }
 
@@ -61,7 +62,8 @@ std::vector<std::uint8_t> encode_mesh(const Mesh& mesh_W, const StoreConfig& con
   draco::Mesh dm;
   draco::GeometryAttribute ga;
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
-  const int att_id = dm.AddAttribute(ga, /*identity_mapping=*/true, static_cast<draco::AttributeValueIndex::ValueType>(n));
+  const int att_id =
+      dm.AddAttribute(ga, /*identity_mapping=*/true, static_cast<draco::AttributeValueIndex::ValueType>(n));
   dm.set_num_points(static_cast<draco::PointIndex::ValueType>(n));
   draco::PointAttribute* att = dm.attribute(att_id);
   for (std::size_t i = 0; i < n; ++i) {
@@ -98,7 +100,8 @@ std::vector<std::uint8_t> encode_points(const Mesh& points_W, const StoreConfig&
     const Eigen::Vector3f p = (points_W.p_W[i] - origin).cast<float>();
     const double norm = points_W.n_W[i].norm();
     // Draco's octahedral normal coding expects unit vectors; a zero normal stays zero-ish (+z) rather than NaN.
-    const Eigen::Vector3f nv = norm > 0 ? Eigen::Vector3f((points_W.n_W[i] / norm).cast<float>()) : Eigen::Vector3f(0, 0, 1);
+    const Eigen::Vector3f nv =
+        norm > 0 ? Eigen::Vector3f((points_W.n_W[i] / norm).cast<float>()) : Eigen::Vector3f(0, 0, 1);
     builder.SetAttributeValueForPoint(pos_id, pi, p.data());
     builder.SetAttributeValueForPoint(nrm_id, pi, nv.data());
   }
@@ -109,7 +112,9 @@ std::vector<std::uint8_t> encode_points(const Mesh& points_W, const StoreConfig&
 }
 
 Mesh decode_draco(const std::uint8_t* data, std::size_t size, const std::string& what) {
-  const auto fail = [&](const std::string& why) { return InputError(where(what, 0, "not a valid Draco file: " + why)); };
+  const auto fail = [&](const std::string& why) {
+    return InputError(where(what, 0, "not a valid Draco file: " + why));
+  };
   if (data == nullptr || size == 0) throw fail("empty");
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(data), size);

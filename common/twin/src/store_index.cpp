@@ -1,14 +1,14 @@
 // index.json of the twin store: writing, and reading with every key checked (a hand-edited or truncated index must
 // give one line naming index.json and the key, never a crash or a silently wrong tile).
+#include "store_index.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 
-#include <nlohmann/json.hpp>
-
-#include "store_index.hpp"
 #include "twinslam/core/error.hpp"
 
 namespace twinslam::twin {
@@ -72,7 +72,9 @@ class Checked {
     if ((lo.array() > hi.array()).any()) bad(join(path, key), "has a minimum above its maximum");
     return {lo, hi};
   }
-  static std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
 
  private:
   std::string file_;
@@ -166,8 +168,8 @@ TwinIndex read_twin_index(const std::string& twin_dir) {
   if (c.string(j, "format", "") != "twinslam-twin") c.bad("format", "must be \"twinslam-twin\"");
   index.format_version = static_cast<int>(c.integer(j, "format_version", ""));
   if (index.format_version != kTwinFormatVersion) {
-    c.bad("format_version", "is " + std::to_string(index.format_version) + ", this build reads " +
-                                std::to_string(kTwinFormatVersion));
+    c.bad("format_version",
+          "is " + std::to_string(index.format_version) + ", this build reads " + std::to_string(kTwinFormatVersion));
   }
   const std::vector<double> o = c.numbers(j, "origin", "", 3);
   if (std::abs(o[0]) > 90.0 || std::abs(o[1]) > 180.0) c.bad("origin", "is not a WGS84 latitude, longitude");

@@ -85,9 +85,9 @@ std::map<TileKey, Mesh> cut_into_tiles(const Mesh& mesh_W, double tile_size_m) {
   for (std::size_t t = 0; t < mesh_W.triangles.size(); ++t) {
     const Eigen::Vector3i& f = mesh_W.triangles[t];
     if ((f.array() < 0).any() || (f.array().cast<long>() >= n_vertices).any()) {
-      throw InputError(where("twin store", 0,
-                             "triangle " + std::to_string(t) + " references a vertex outside 0.." +
-                                 std::to_string(n_vertices - 1)));
+      throw InputError(
+          where("twin store", 0,
+                "triangle " + std::to_string(t) + " references a vertex outside 0.." + std::to_string(n_vertices - 1)));
     }
     const Polygon tri{mesh_W.p_W[f[0]], mesh_W.p_W[f[1]], mesh_W.p_W[f[2]]};
     TileKey lo = tile_of(tri[0].x(), tri[0].y(), s), hi = lo;

@@ -6,9 +6,9 @@
 //   tiles/<ix>_<iy>.mesh.drc      Draco triangle mesh of the tile (only if it has triangles)
 //   tiles/<ix>_<iy>.points.drc    Draco point cloud with a NORMAL attribute (only if it has points)
 // Tile (ix, iy) covers e in [ix * size, (ix + 1) * size), n in [iy * size, (iy + 1) * size) in W.
-// Draco positions are float32 and quantized over the tile's bounding box: float32 steps are 0.5 mm at 5 km from the
-// origin and 2 mm at 30 km, so each file stores positions relative to its tile's origin corner (ix * size, iy * size, 0)
-// and carries that offset as Draco geometry metadata ("twinslam_origin_W", 3 doubles); decode_draco adds it back, so
+// Draco positions are float32 and quantized over the tile's bounding box; float32 steps are 0.5 mm at 5 km from the
+// origin and 2 mm at 30 km. So each file stores positions relative to its tile's origin corner (ix * size, iy * size,
+// 0) and carries that offset as Draco geometry metadata ("twinslam_origin_W", 3 doubles); decode_draco adds it back, so
 // decoded coordinates are in W whoever decodes the bytes. Position error after a round trip (per coordinate):
 //   <= range / (2 * (2^position_bits - 1)) + |p - origin| * 2^-24,  range = largest side of the tile's bounding box;
 // a 50 m x 50 m x 100 m tile at the default 20 bits: <= 0.05 mm + 0.01 mm.
