@@ -168,7 +168,7 @@ TEST(Tiles3d, LevelChoiceFollowsGeometricErrorAndRefine) {
 
 TEST(Tiles3d, TransformsChainParentTimesChild) {
   // Parent: a 100 m ECEF translation d; child: the BatchedWithTransformBox transform T. parent * child puts every
-  // vertex at golden + d; child * parent would put it at golden + R(T) d, ~60 m away from that.
+  // vertex at golden + d; child * parent would put it at golden + R(T) d, ~25 m away from that.
   Scratch tmp("chain");
   const std::string dir = sample("cesium-tools/Batched/BatchedWithTransformBox/");
   const std::string T = R"([0.9686356343768792,0.24848542777253735,0,0,-0.15986460744966327,0.623177611820219,)"
