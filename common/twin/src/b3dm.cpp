@@ -27,7 +27,9 @@ struct Layout {
 
 Layout read_layout(const std::uint8_t* d, std::size_t byte_length, const std::string& name) {
   Layout l;
-  if (byte_length < 20) throw InputError(where(name, 0, "b3dm header truncated (" + std::to_string(byte_length) + " bytes)"));
+  if (byte_length < 20) {
+    throw InputError(where(name, 0, "b3dm header truncated (" + std::to_string(byte_length) + " bytes)"));
+  }
   // Words after magic / version / byteLength; a legacy-1 tile may be only 20 bytes + body, so read what exists.
   const std::uint32_t w3 = u32(d + 12);
   const std::uint32_t w4 = u32(d + 16);
@@ -43,7 +45,9 @@ Layout read_layout(const std::uint8_t* d, std::size_t byte_length, const std::st
     l.bt_bin = w4;
     l.legacy_batch_length = w5;
   } else {
-    if (byte_length < 28) throw InputError(where(name, 0, "b3dm header truncated (" + std::to_string(byte_length) + " bytes)"));
+    if (byte_length < 28) {
+      throw InputError(where(name, 0, "b3dm header truncated (" + std::to_string(byte_length) + " bytes)"));
+    }
     l.ft_json = w3;
     l.ft_bin = w4;
     l.bt_json = w5;
@@ -60,10 +64,16 @@ void check_aligned(std::uint64_t offset, const char* what, const std::string& na
 }
 
 B3dmContent parse_checked(const std::uint8_t* d, std::size_t size, const std::string& name, B3dmCheck check) {
-  if (d == nullptr || size < 12) throw InputError(where(name, 0, "b3dm header truncated (" + std::to_string(size) + " bytes)"));
-  if (!(d[0] == 'b' && d[1] == '3' && d[2] == 'd' && d[3] == 'm')) throw InputError(where(name, 0, "bad b3dm magic (expected 'b3dm')"));
+  if (d == nullptr || size < 12) {
+    throw InputError(where(name, 0, "b3dm header truncated (" + std::to_string(size) + " bytes)"));
+  }
+  if (!(d[0] == 'b' && d[1] == '3' && d[2] == 'd' && d[3] == 'm')) {
+    throw InputError(where(name, 0, "bad b3dm magic (expected 'b3dm')"));
+  }
   const std::uint32_t version = u32(d + 4);
-  if (version != 1) throw InputError(where(name, 0, "b3dm version " + std::to_string(version) + " unsupported (expected 1)"));
+  if (version != 1) {
+    throw InputError(where(name, 0, "b3dm version " + std::to_string(version) + " unsupported (expected 1)"));
+  }
   const std::size_t byte_length = u32(d + 8);
   if (byte_length > size) {
     throw InputError(where(name, 0, "b3dm byteLength " + std::to_string(byte_length) + " exceeds the " +
@@ -80,7 +90,8 @@ B3dmContent parse_checked(const std::uint8_t* d, std::size_t size, const std::st
   const std::uint64_t bt_bin_at = bt_json_at + l.bt_json;
   const std::uint64_t glb_at = bt_bin_at + l.bt_bin;
   if (glb_at > byte_length) {
-    throw InputError(where(name, 0, "b3dm table lengths (" + std::to_string(glb_at - static_cast<std::uint64_t>(l.header)) +
+    const std::uint64_t tables = glb_at - static_cast<std::uint64_t>(l.header);
+    throw InputError(where(name, 0, "b3dm table lengths (" + std::to_string(tables) +
                                         " bytes) run past byteLength " + std::to_string(byte_length)));
   }
   if (!legacy) {  // the legacy layouts predate the padding rules

@@ -20,7 +20,9 @@ constexpr std::uint32_t kBin = 0x004E4942;   // "BIN\0"
 }  // namespace
 
 GlbChunks check_glb(const std::uint8_t* data, std::size_t size, const std::string& name) {
-  if (size < 12) throw InputError(where(name, 0, "GLB shorter than its 12-byte header (" + std::to_string(size) + " bytes)"));
+  if (size < 12) {
+    throw InputError(where(name, 0, "GLB shorter than its 12-byte header (" + std::to_string(size) + " bytes)"));
+  }
   if (!looks_like_glb(data, size)) throw InputError(where(name, 0, "bad GLB magic (expected 'glTF')"));
   const std::uint32_t version = u32(data + 4);
   if (version != 2) {

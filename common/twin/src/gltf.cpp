@@ -113,7 +113,9 @@ struct Walker {
 std::vector<int> root_nodes(const tinygltf::Model& model, const std::string& name) {
   if (!model.scenes.empty()) {
     const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (static_cast<std::size_t>(s) >= model.scenes.size()) throw InputError(where(name, 0, "default scene out of range"));
+    if (static_cast<std::size_t>(s) >= model.scenes.size()) {
+      throw InputError(where(name, 0, "default scene out of range"));
+    }
     return model.scenes[static_cast<std::size_t>(s)].nodes;
   }
   std::vector<bool> is_child(model.nodes.size(), false);
@@ -134,7 +136,9 @@ Eigen::Vector3d cesium_rtc_y_up(const tinygltf::Model& model, const std::string&
   auto it = model.extensions.find("CESIUM_RTC");
   if (it == model.extensions.end()) return Eigen::Vector3d::Zero();
   const tinygltf::Value& center = it->second.Get("center");
-  if (!center.IsArray() || center.ArrayLen() != 3) throw InputError(where(name, 0, "CESIUM_RTC center is not 3 numbers"));
+  if (!center.IsArray() || center.ArrayLen() != 3) {
+    throw InputError(where(name, 0, "CESIUM_RTC center is not 3 numbers"));
+  }
   Eigen::Vector3d c;
   for (int i = 0; i < 3; ++i) {
     const tinygltf::Value& v = center.Get(i);

@@ -32,15 +32,35 @@ int component_count(int type) {
   }
 }
 
+// Unaligned little-endian read (x86 and every platform Debian ships for this are little-endian).
+template <typename T>
+double load(const std::uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return static_cast<double>(v);
+}
+
 // One component as double; normalized integers map to [-1, 1] / [0, 1] (KHR_mesh_quantization, spec 3.11).
 double component(const std::uint8_t* p, int type, bool normalized) {
   switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(v / 127.0, -1.0) : v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { std::uint8_t v; std::memcpy(&v, p, 1); return normalized ? v / 255.0 : v; }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const double v = load<std::int8_t>(p);
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+      const double v = load<std::uint8_t>(p);
+      return normalized ? v / 255.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      const double v = load<std::int16_t>(p);
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      const double v = load<std::uint16_t>(p);
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load<std::uint32_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
     default: return 0.0;
   }
 }
@@ -52,7 +72,9 @@ std::vector<double> read_accessor(const Ctx& c, int index, int want, const char*
   const tinygltf::Accessor& acc = c.model.accessors[static_cast<std::size_t>(index)];
   if (acc.sparse.isSparse) throw c.error(what + " is sparse (not supported)");
   const int ncomp = component_count(acc.type);
-  if (ncomp != want) throw c.error(what + " has " + std::to_string(ncomp) + " components, expected " + std::to_string(want));
+  if (ncomp != want) {
+    throw c.error(what + " has " + std::to_string(ncomp) + " components, expected " + std::to_string(want));
+  }
   const int csize = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(acc.componentType));
   if (csize <= 0 || acc.componentType == TINYGLTF_COMPONENT_TYPE_DOUBLE) {
     throw c.error(what + " has invalid componentType " + std::to_string(acc.componentType));
@@ -60,7 +82,9 @@ std::vector<double> read_accessor(const Ctx& c, int index, int want, const char*
   std::vector<double> values(acc.count * static_cast<std::size_t>(ncomp), 0.0);
   if (acc.count == 0) return values;
   if (acc.bufferView < 0) return values;  // spec: no bufferView and not sparse means all zeros
-  if (static_cast<std::size_t>(acc.bufferView) >= c.model.bufferViews.size()) throw c.error(what + " bufferView out of range");
+  if (static_cast<std::size_t>(acc.bufferView) >= c.model.bufferViews.size()) {
+    throw c.error(what + " bufferView out of range");
+  }
   const tinygltf::BufferView& view = c.model.bufferViews[static_cast<std::size_t>(acc.bufferView)];
   if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= c.model.buffers.size()) {
     throw c.error(what + " bufferView " + std::to_string(acc.bufferView) + " names a missing buffer");
@@ -92,7 +116,9 @@ std::vector<double> read_accessor(const Ctx& c, int index, int want, const char*
 
 std::vector<Eigen::Vector3i> triangles_of(const Ctx& c, int mode, const std::vector<int>& idx, std::size_t nverts) {
   for (int i : idx) {
-    if (i < 0 || static_cast<std::size_t>(i) >= nverts) throw c.error("index " + std::to_string(i) + " >= vertex count " + std::to_string(nverts));
+    if (i < 0 || static_cast<std::size_t>(i) >= nverts) {
+      throw c.error("index " + std::to_string(i) + " >= vertex count " + std::to_string(nverts));
+    }
   }
   std::vector<Eigen::Vector3i> tris;
   const std::size_t n = idx.size();
@@ -123,9 +149,13 @@ PrimitiveGeometry read_draco(const Ctx& c, const tinygltf::Primitive& prim, cons
     throw c.error("KHR_draco_mesh_compression bufferView " + std::to_string(view_index) + " out of range");
   }
   const tinygltf::BufferView& view = c.model.bufferViews[static_cast<std::size_t>(view_index)];
-  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= c.model.buffers.size()) throw c.error("Draco bufferView names a missing buffer");
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= c.model.buffers.size()) {
+    throw c.error("Draco bufferView names a missing buffer");
+  }
   const auto& buf = c.model.buffers[static_cast<std::size_t>(view.buffer)].data;
-  if (view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset) throw c.error("Draco bufferView runs past its buffer");
+  if (view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset) {
+    throw c.error("Draco bufferView runs past its buffer");
+  }
   auto id_of = [&](const char* key) {
     const tinygltf::Value& v = atts.Get(key);
     return v.IsInt() ? v.Get<int>() : -1;
@@ -147,7 +177,9 @@ PrimitiveGeometry read_primitive(const tinygltf::Model& model, const tinygltf::P
                                  std::size_t mesh_index, const std::string& name) {
   const Ctx c{model, name, "mesh " + std::to_string(mesh_index) + ": "};
   const int mode = prim.mode;
-  if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN) throw c.error("primitive mode " + std::to_string(mode) + " invalid");
+  if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+    throw c.error("primitive mode " + std::to_string(mode) + " invalid");
+  }
   if (mode < TINYGLTF_MODE_TRIANGLES) return {};  // points and lines carry no surface
   auto draco = prim.extensions.find("KHR_draco_mesh_compression");
   if (draco != prim.extensions.end()) return read_draco(c, prim, draco->second);

@@ -92,7 +92,9 @@ std::vector<double> table_numbers(const TableBytes& t, const nlohmann::json& val
                                         ") runs past the binary body of " + std::to_string(t.binary_size) + " bytes"));
   }
   out.resize(total);
-  for (std::size_t i = 0; i < total; ++i) out[i] = read_component(t.binary + offset + i * static_cast<std::size_t>(csize), ctype);
+  for (std::size_t i = 0; i < total; ++i) {
+    out[i] = read_component(t.binary + offset + i * static_cast<std::size_t>(csize), ctype);
+  }
   return out;
 }
 

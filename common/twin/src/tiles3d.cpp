@@ -74,7 +74,9 @@ struct ContentLoader {
     const std::size_t base = out.num_vertices();
     out.append(model.mesh);
     if (batch_id != nullptr) {
-      if (model.batch_id.empty()) model.batch_id.assign(model.mesh.num_vertices(), std::numeric_limits<std::uint32_t>::max());
+      if (model.batch_id.empty()) {  // content without batch ids: the "no feature" id keeps the vectors aligned
+        model.batch_id.assign(model.mesh.num_vertices(), std::numeric_limits<std::uint32_t>::max());
+      }
       batch_id->resize(base);
       batch_id->insert(batch_id->end(), model.batch_id.begin(), model.batch_id.end());
     }
@@ -99,7 +101,8 @@ Mesh load_tile_content(const TileContentRef& content, const EnuFrame& enu, std::
 }
 
 Mesh load_3dtiles(const std::string& tileset_json, const LoadOptions& options, LoadReport* report) {
-  const std::vector<TileContentRef> contents = select_3dtiles_contents(tileset_json, options.max_geometric_error_m, report);
+  const std::vector<TileContentRef> contents =
+      select_3dtiles_contents(tileset_json, options.max_geometric_error_m, report);
   const EnuFrame enu(options.origin);
   Mesh mesh_W;
   for (const TileContentRef& c : contents) {

@@ -125,9 +125,12 @@ struct Selector {
 
   void tile(const json& t, const std::string& file, const fs::path& dir, const Eigen::Matrix4d& T_parent,
             const std::string& parent_refine, const std::string& at, int depth) {
-    if (depth > kMaxDepth) throw InputError(where(file, 0, at + ": tiles nested deeper than " + std::to_string(kMaxDepth)));
+    if (depth > kMaxDepth) {
+      throw InputError(where(file, 0, at + ": tiles nested deeper than " + std::to_string(kMaxDepth)));
+    }
     if (!t.is_object()) throw InputError(where(file, 0, at + ": tile is not an object"));
-    if (!t.contains("geometricError") || !t["geometricError"].is_number() || !(t["geometricError"].get<double>() >= 0)) {
+    if (!t.contains("geometricError") || !t["geometricError"].is_number() ||
+        !(t["geometricError"].get<double>() >= 0)) {
       throw InputError(where(file, 0, at + ": geometricError missing or negative"));
     }
     if (t.contains("implicitTiling")) {
@@ -142,10 +145,14 @@ struct Selector {
       if (!t["refine"].is_string()) throw InputError(where(file, 0, at + ": refine is not a string"));
       refine = t["refine"];
       std::transform(refine.begin(), refine.end(), refine.begin(), [](unsigned char c) { return std::toupper(c); });
-      if (refine != "ADD" && refine != "REPLACE") throw InputError(where(file, 0, at + ": refine '" + refine + "' is neither ADD nor REPLACE"));
+      if (refine != "ADD" && refine != "REPLACE") {
+        throw InputError(where(file, 0, at + ": refine '" + refine + "' is neither ADD nor REPLACE"));
+      }
     }
     const json* children = t.contains("children") ? &t["children"] : nullptr;
-    if (children != nullptr && !children->is_array()) throw InputError(where(file, 0, at + ": children is not an array"));
+    if (children != nullptr && !children->is_array()) {
+      throw InputError(where(file, 0, at + ": children is not an array"));
+    }
     const bool leaf = children == nullptr || children->empty();
     const bool enough = error <= tau || leaf;  // this level is fine enough: its content, not its children's
     if (enough || refine == "ADD") contents(t, file, dir, T, error, at, depth);

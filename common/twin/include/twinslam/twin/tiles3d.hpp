@@ -33,7 +33,7 @@ namespace twinslam::twin {
 // One selected renderable content of a tileset.
 struct TileContentRef {
   std::string path;                                       // resolved file path
-  Eigen::Matrix4d T_ECEF_tile = Eigen::Matrix4d::Identity();  // accumulated tile transform (tile frame -> ECEF)
+  Eigen::Matrix4d T_ECEF_tile = Eigen::Matrix4d::Identity();  // accumulated tile transform: tile frame -> ECEF
   double geometric_error = 0.0;                           // of the tile holding it [m]
 };
 
@@ -46,8 +46,9 @@ std::vector<TileContentRef> select_3dtiles_contents(const std::string& tileset_j
 // batch_table the b3dm batch table (for a cmpt: those of its last b3dm, ids not offset: use them on b3dm content).
 // Unsupported inner tiles of a cmpt are skipped with a line in report->rejected. Throws InputError naming the file
 // and problem.
-Mesh load_tile_content(const TileContentRef& content, const EnuFrame& enu, std::vector<std::uint32_t>* batch_id = nullptr,
-                       BatchTable* batch_table = nullptr, LoadReport* report = nullptr);
+Mesh load_tile_content(const TileContentRef& content, const EnuFrame& enu,
+                       std::vector<std::uint32_t>* batch_id = nullptr, BatchTable* batch_table = nullptr,
+                       LoadReport* report = nullptr);
 
 Mesh load_3dtiles(const std::string& tileset_json, const LoadOptions& options, LoadReport* report);
 
