@@ -117,7 +117,9 @@ TEST(B3dm, RandomByteCorruptionNeverCrashes) {
     try {
       const B3dmContent c = parse(b);
       const auto n = static_cast<int>(c.gltf.mesh.num_vertices());
-      for (const Eigen::Vector3i& t : c.gltf.mesh.triangles) ASSERT_TRUE((t.array() >= 0).all() && (t.array() < n).all());
+      for (const Eigen::Vector3i& t : c.gltf.mesh.triangles) {
+        ASSERT_TRUE((t.array() >= 0).all() && (t.array() < n).all());
+      }
     } catch (const twinslam::InputError& e) {
       ++errors;
       ASSERT_NE(std::string(e.what()).find("tile.b3dm"), std::string::npos) << e.what();

@@ -16,7 +16,9 @@ std::string base64(const std::vector<std::uint8_t>& in) {
   static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   for (std::size_t i = 0; i < in.size(); i += 3) {
-    const std::uint32_t n = (in[i] << 16) | ((i + 1 < in.size() ? in[i + 1] : 0) << 8) | (i + 2 < in.size() ? in[i + 2] : 0);
+    const std::uint32_t b1 = i + 1 < in.size() ? in[i + 1] : 0;
+    const std::uint32_t b2 = i + 2 < in.size() ? in[i + 2] : 0;
+    const std::uint32_t n = (static_cast<std::uint32_t>(in[i]) << 16) | (b1 << 8) | b2;
     out += k[(n >> 18) & 63];
     out += k[(n >> 12) & 63];
     out += i + 1 < in.size() ? k[(n >> 6) & 63] : '=';
@@ -90,7 +92,8 @@ TEST(Gltf, StripAndFanBecomeTrianglesWithNodeTransformsApplied) {
 }
 
 TEST(Gltf, CesiumRtcCenterIsAddedAsAZUpOffset) {
-  const Mesh m = load_text(square_gltf(4, 3, R"(,"extensionsUsed":["CESIUM_RTC"],"extensions":{"CESIUM_RTC":{"center":[100,200,300]}})"));
+  const std::string rtc = R"(,"extensionsUsed":["CESIUM_RTC"],"extensions":{"CESIUM_RTC":{"center":[100,200,300]}})";
+  const Mesh m = load_text(square_gltf(4, 3, rtc));
   ASSERT_EQ(m.num_vertices(), 3u);
   // Model frame stays y-up; turned to z-up the first vertex (10, 0, 0) lands at (10, 0, 0) + center.
   EXPECT_TRUE(gltf_y_up_to_z_up(m.p_W[0]).isApprox(Eigen::Vector3d(110, 200, 300)));

@@ -21,6 +21,8 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 // W's origin: the centre of the sample city (its tileset's region, radians), on the ellipsoid.
 const GeoOrigin kOrigin{0.698874 * kDeg, -1.31968 * kDeg, 0.0};
 
+std::string batched(const std::string& dir) { return sample("cesium-tools/Batched/" + dir + "/tileset.json"); }
+
 LoadOptions options(double max_error = 0.0) {
   LoadOptions o;
   o.origin = kOrigin;
@@ -29,7 +31,8 @@ LoadOptions options(double max_error = 0.0) {
 }
 
 // Per batch id: placed vertex bounds in W.
-std::map<std::uint32_t, Eigen::AlignedBox3d> buildings(const TileContentRef& c, const EnuFrame& enu, BatchTable* table) {
+std::map<std::uint32_t, Eigen::AlignedBox3d> buildings(const TileContentRef& c, const EnuFrame& enu,
+                                                       BatchTable* table) {
   std::vector<std::uint32_t> ids;
   const Mesh m = load_tile_content(c, enu, &ids, table);
   EXPECT_EQ(ids.size(), m.num_vertices());
@@ -38,7 +41,9 @@ std::map<std::uint32_t, Eigen::AlignedBox3d> buildings(const TileContentRef& c, 
   return out;
 }
 
-std::string tileset(const std::string& root) { return R"({"asset":{"version":"1.1"},"geometricError":100,"root":)" + root + "}"; }
+std::string tileset(const std::string& root) {
+  return R"({"asset":{"version":"1.1"},"geometricError":100,"root":)" + root + "}";
+}
 std::string tile(double error, const std::string& uri, const std::string& more = "") {
   return R"({"boundingVolume":{"sphere":[0,0,0,1e7]},"geometricError":)" + std::to_string(error) +
          (uri.empty() ? "" : R"(,"content":{"uri":")" + uri + "\"}") + more + "}";
@@ -51,7 +56,8 @@ TEST(Tiles3d, CityBuildingsLandWhereTheirBatchTablesSay) {
   // its base lies on the ellipsoid (h = 0); Height is the building's height: the roof is Height metres above that
   // point. (Measured: footprint centre within 0.4 m of the position, base at 0.00 m, roof at Height +- 0.01 m.)
   LoadReport report;
-  const auto contents = select_3dtiles_contents(sample("cesium-samples/TilesetWithRequestVolume/city/tileset.json"), 0, &report);
+  const std::string city = sample("cesium-samples/TilesetWithRequestVolume/city/tileset.json");
+  const auto contents = select_3dtiles_contents(city, 0, &report);
   ASSERT_EQ(contents.size(), 4u);
   EXPECT_TRUE(report.rejected.empty());
   const EnuFrame enu(kOrigin);
@@ -77,10 +83,10 @@ TEST(Tiles3d, CityBuildingsLandWhereTheirBatchTablesSay) {
 }
 
 TEST(Tiles3d, EveryValidSampleLoads) {
-  for (const char* dir : {"BatchedWGS84", "BatchedWithRtcCenter", "BatchedWithTransformBox", "BatchedWithTransformRegion",
-                          "BatchedDeprecated1"}) {
+  for (const char* dir : {"BatchedWGS84", "BatchedWithRtcCenter", "BatchedWithTransformBox",
+                          "BatchedWithTransformRegion", "BatchedDeprecated1"}) {
     LoadReport report;
-    const Mesh m = load_3dtiles(sample(std::string("cesium-tools/Batched/") + dir + "/tileset.json"), options(), &report);
+    const Mesh m = load_3dtiles(batched(dir), options(), &report);
     EXPECT_EQ(report.parts_loaded, 1u) << dir;
     EXPECT_TRUE(report.rejected.empty()) << dir << ": " << (report.rejected.empty() ? "" : report.rejected[0]);
     EXPECT_EQ(m.num_triangles(), 120u) << dir;  // ten boxes of 12 triangles
@@ -99,7 +105,8 @@ TEST(Tiles3d, EveryValidSampleLoads) {
   EXPECT_NE(report.rejected[0].find("not supported"), std::string::npos) << report.rejected[0];
   // building.b3dm: its transform scales the 13.42 m model by 5 and stands it on the ellipsoid; the root region's
   // maximum height, 67.01 m, is its roof.
-  const auto contents = select_3dtiles_contents(sample("cesium-samples/TilesetWithRequestVolume/tileset.json"), 0, nullptr);
+  const std::string root = sample("cesium-samples/TilesetWithRequestVolume/tileset.json");
+  const auto contents = select_3dtiles_contents(root, 0, nullptr);
   ASSERT_EQ(contents.size(), 6u);  // 4 city tiles, building, points (rejected only when read)
   const EnuFrame enu(kOrigin);
   for (const TileContentRef& c : contents) {
@@ -117,27 +124,30 @@ TEST(Tiles3d, TransformedTilesLandOnTheirGoldenPlacement) {
   // BatchedWithTransformBox / -Region and the legacy BatchedDeprecated1 hold the same vertices (same order) in a
   // local ENU frame under a tile transform. The golden file stores ECEF as float32, so its vertices are off by up
   // to half a float32 step per axis: 0.0625 m at |x| ~ 1.2e6 m, 0.25 m at |y|, |z| ~ 4e6 m -> 0.36 m in all.
-  const Mesh golden = load_3dtiles(sample("cesium-tools/Batched/BatchedWGS84/tileset.json"), options(), nullptr);
+  const Mesh golden = load_3dtiles(batched("BatchedWGS84"), options(), nullptr);
   ASSERT_EQ(golden.num_vertices(), 240u);
   const double kFloat32Bound = std::sqrt(0.0625 * 0.0625 + 2 * 0.25 * 0.25);
   for (const char* dir : {"BatchedWithTransformBox", "BatchedWithTransformRegion", "BatchedDeprecated1"}) {
-    const Mesh placed = load_3dtiles(sample(std::string("cesium-tools/Batched/") + dir + "/tileset.json"), options(), nullptr);
+    const Mesh placed = load_3dtiles(batched(dir), options(), nullptr);
     ASSERT_EQ(placed.num_vertices(), golden.num_vertices()) << dir;
     double worst = 0.0;
-    for (std::size_t i = 0; i < golden.num_vertices(); ++i) worst = std::max(worst, (placed.p_W[i] - golden.p_W[i]).norm());
+    for (std::size_t i = 0; i < golden.num_vertices(); ++i) {
+      worst = std::max(worst, (placed.p_W[i] - golden.p_W[i]).norm());
+    }
     EXPECT_LT(worst, kFloat32Bound + 1e-3) << dir;
   }
   // BatchedWithRtcCenter: the TransformBox vertices plus RTC_CENTER (0.1, 0.2, 0.3). The spec adds RTC_CENTER in
   // the z-up tile frame, after the y-up -> z-up turn and before the tile transform: every vertex moves by
   // R_W_ECEF * R_tile * rtc. (Added after the transform it would be R_W_ECEF * rtc; added in the y-up frame,
   // R_W_ECEF * R_tile * (0.1, 0.3, -0.2): both differ by more than 0.1 m.)
-  const Mesh box = load_3dtiles(sample("cesium-tools/Batched/BatchedWithTransformBox/tileset.json"), options(), nullptr);
-  const Mesh rtc = load_3dtiles(sample("cesium-tools/Batched/BatchedWithRtcCenter/tileset.json"), options(), nullptr);
+  const Mesh box = load_3dtiles(batched("BatchedWithTransformBox"), options(), nullptr);
+  const Mesh rtc = load_3dtiles(batched("BatchedWithRtcCenter"), options(), nullptr);
   ASSERT_EQ(rtc.num_vertices(), box.num_vertices());
-  const auto contents = select_3dtiles_contents(sample("cesium-tools/Batched/BatchedWithRtcCenter/tileset.json"), 0, nullptr);
+  const auto contents = select_3dtiles_contents(batched("BatchedWithRtcCenter"), 0, nullptr);
   ASSERT_EQ(contents.size(), 1u);
   const EnuFrame enu(kOrigin);
-  const Eigen::Vector3d shift_W = enu.R_W_ECEF() * contents[0].T_ECEF_tile.topLeftCorner<3, 3>() * Eigen::Vector3d(0.1, 0.2, 0.3);
+  const Eigen::Matrix3d R_ECEF_tile = contents[0].T_ECEF_tile.topLeftCorner<3, 3>();
+  const Eigen::Vector3d shift_W = enu.R_W_ECEF() * R_ECEF_tile * Eigen::Vector3d(0.1, 0.2, 0.3);
   for (std::size_t i = 0; i < box.num_vertices(); ++i) {
     ASSERT_LT((rtc.p_W[i] - box.p_W[i] - shift_W).norm(), 1e-3) << i;
   }
@@ -175,7 +185,8 @@ TEST(Tiles3d, TransformsChainParentTimesChild) {
                         R"(0.765567091384559,0,0.19023226619126932,-0.7415555652213445,0.6433560667227647,0,)"
                         R"(1215011.9317263428,-4736309.3434217675,4081602.0044800863,1])";
   const std::string child = tile(0, dir + "batchedWithTransformBox.b3dm", R"(,"transform":)" + T);
-  write_text(tmp.path("chain.json"), tileset(tile(10, "", R"(,"refine":"ADD","transform":[1,0,0,0,0,1,0,0,0,0,1,0,100,0,0,1],"children":[)" + child + "]")));
+  const std::string parent = R"(,"refine":"ADD","transform":[1,0,0,0,0,1,0,0,0,0,1,0,100,0,0,1],"children":[)";
+  write_text(tmp.path("chain.json"), tileset(tile(10, "", parent + child + "]")));
   const Mesh chained = load_3dtiles(tmp.path("chain.json"), options(), nullptr);
   const Mesh golden = load_3dtiles(dir + "tileset.json", options(), nullptr);
   ASSERT_EQ(chained.num_vertices(), golden.num_vertices());
@@ -193,8 +204,9 @@ TEST(Tiles3d, BadContentIsRejectedAndLoadingContinues) {
   write_bytes(tmp.path("cut.b3dm"), {ll.begin(), ll.begin() + 500});
   write_bytes(tmp.path("invalid.b3dm"), bytes_of(sample("cesium-validator/invalid.b3dm")));
   write_text(tmp.path("self.json"), tileset(tile(0, "self.json")));
-  const std::string children = R"(,"refine":"ADD","children":[)" + tile(0, "cut.b3dm") + "," + tile(0, "missing.b3dm") + "," +
-                               tile(0, "invalid.b3dm") + "," + tile(0, city + "lr.b3dm") + "," + tile(0, "self.json") + "]";
+  const std::string children = R"(,"refine":"ADD","children":[)" + tile(0, "cut.b3dm") + "," +
+                               tile(0, "missing.b3dm") + "," + tile(0, "invalid.b3dm") + "," +
+                               tile(0, city + "lr.b3dm") + "," + tile(0, "self.json") + "]";
   write_text(tmp.path("tileset.json"), tileset(tile(10, "", children)));
   LoadReport report;
   const Mesh m = load_3dtiles(tmp.path("tileset.json"), options(), &report);
@@ -226,7 +238,8 @@ TEST(Tiles3d, MalformedTilesetThrowsWithTheReason) {
   expect(tileset(tile(1, "", R"(,"transform":[1,0,0,0])")), "transform is not 16");
   expect(tileset(tile(1, "", R"(,"refine":"MERGE")")), "refine 'MERGE'");
   expect(tileset(tile(1, "", R"(,"children":[{"geometricError":0}])")), "root/0: boundingVolume missing");
-  expect_input_error([] { load_3dtiles("/nonexistent/tileset.json", options(), nullptr); }, {"/nonexistent/tileset.json", "cannot open"});
+  expect_input_error([] { load_3dtiles("/nonexistent/tileset.json", options(), nullptr); },
+                     {"/nonexistent/tileset.json", "cannot open"});
 }
 
 TEST(Tiles3d, CorruptedTilesetTextNeverCrashes) {
@@ -273,10 +286,12 @@ TEST(Tiles3d, GltfContentIsTurnedZUpAndPlacedWithCesiumRtc) {
     return R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
            R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
-           R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,"uri":"tri.bin"}])" + extra + "}";
+           R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,"uri":"tri.bin"}])" + extra +
+           "}";
   };
   write_text(tmp.path("plain.gltf"), gltf(""));
-  write_text(tmp.path("rtc.gltf"), gltf(R"(,"extensionsUsed":["CESIUM_RTC"],"extensions":{"CESIUM_RTC":{"center":[10,20,30]}})"));
+  const std::string rtc = R"(,"extensionsUsed":["CESIUM_RTC"],"extensions":{"CESIUM_RTC":{"center":[10,20,30]}})";
+  write_text(tmp.path("rtc.gltf"), gltf(rtc));
   const EnuFrame enu(kOrigin);
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();  // tile frame = W axes, at W's origin, in ECEF
   T.topLeftCorner<3, 3>() = enu.R_W_ECEF().transpose();
@@ -317,20 +332,25 @@ TEST(Tiles3d, CompositeTilesLoadTheirB3dmAndReportThePointCloud) {
   put_u32(broken, 12, 1u << 30);
   write_bytes(tmp.path("broken.cmpt"), broken);
   write_text(tmp.path("cmpt.json"), tileset(tile(0, "city.cmpt")));
-  write_text(tmp.path("separate.json"), tileset(tile(1, "", R"(,"refine":"ADD","children":[)" + tile(0, dir + "city/ll.b3dm") +
-                                                                "," + tile(0, dir + "city/lr.b3dm") + "]")));
+  const std::string two = R"(,"refine":"ADD","children":[)" + tile(0, dir + "city/ll.b3dm") + "," +
+                          tile(0, dir + "city/lr.b3dm") + "]";
+  write_text(tmp.path("separate.json"), tileset(tile(1, "", two)));
   write_text(tmp.path("broken.json"), tileset(tile(0, "broken.cmpt")));
   LoadReport report;
   const Mesh composite = load_3dtiles(tmp.path("cmpt.json"), options(), &report);
   const Mesh separate = load_3dtiles(tmp.path("separate.json"), options(), nullptr);
   EXPECT_EQ(report.parts_loaded, 1u);
   ASSERT_EQ(report.rejected.size(), 1u);
-  EXPECT_NE(report.rejected[0].find("city.cmpt [inner tile 2]: pnts content not supported"), std::string::npos) << report.rejected[0];
+  EXPECT_NE(report.rejected[0].find("city.cmpt [inner tile 2]: pnts content not supported"), std::string::npos)
+      << report.rejected[0];
   ASSERT_EQ(composite.num_vertices(), separate.num_vertices());
   EXPECT_EQ(composite.triangles, separate.triangles);
-  for (std::size_t i = 0; i < composite.num_vertices(); ++i) ASSERT_LT((composite.p_W[i] - separate.p_W[i]).norm(), 1e-9);
+  for (std::size_t i = 0; i < composite.num_vertices(); ++i) {
+    ASSERT_LT((composite.p_W[i] - separate.p_W[i]).norm(), 1e-9);
+  }
   LoadReport bad;
   EXPECT_TRUE(load_3dtiles(tmp.path("broken.json"), options(), &bad).empty());
   ASSERT_EQ(bad.rejected.size(), 1u);
-  EXPECT_NE(bad.rejected[0].find("broken.cmpt: cmpt tilesLength 1073741824 is implausible"), std::string::npos) << bad.rejected[0];
+  EXPECT_NE(bad.rejected[0].find("broken.cmpt: cmpt tilesLength 1073741824 is implausible"), std::string::npos)
+      << bad.rejected[0];
 }

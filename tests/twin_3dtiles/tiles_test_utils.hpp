@@ -21,7 +21,8 @@ inline std::vector<std::uint8_t> bytes_of(const std::string& path) {
 }
 
 inline void write_bytes(const std::string& path, const std::vector<std::uint8_t>& b) {
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
 }
 
 inline void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
