@@ -115,6 +115,13 @@ TEST_F(TwinCli, BadUsageAndInputExitTwoWithOneLine) {
       twinslam({"twin", "build", ply.string(), "--origin", "47,8,400", "--out", twin.string(), "--tile-size", "0"}),
       "tile size");
   expect_bad_input(twinslam({"twin", "info", (dir_ / "missing").string()}), "index.json");
+  Mesh points;  // a point set with normals cannot be merged into a triangle mesh
+  points.p_W = {{1, 1, 1}, {2, 2, 2}};
+  points.n_W = {{0, 0, 1}, {0, 0, 1}};
+  write_ply((dir_ / "points.ply").string(), points, PlyFormat::kAscii);
+  expect_bad_input(twinslam({"twin", "build", ply.string(), (dir_ / "points.ply").string(), "--origin", "47,8,400",
+                             "--out", twin.string()}),
+                   "cannot combine");
   EXPECT_EQ(twinslam({"twin", "build", ply.string(), "--out", twin.string()}).exit_code, 2);  // --origin required
   EXPECT_FALSE(fs::exists(twin / "index.json"));
 }

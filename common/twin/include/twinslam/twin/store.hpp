@@ -74,8 +74,10 @@ struct Tile {
   Mesh points_W;                    // p_W + n_W, no triangles
 };
 
-// Cuts, samples, encodes and writes the store; returns its index (also written as index.json). Throws InputError
-// when out_dir cannot be written.
+// Cuts, samples, encodes and writes the store; returns its index (also written as index.json, last, through a rename).
+// A mesh without triangles but with one normal per point is a point set: its points are the tiles' points. Rebuilding
+// into the same folder removes its old tiles/*.drc first. Throws InputError when out_dir cannot be written or the
+// mesh is empty or malformed.
 TwinIndex build_twin_store(const Mesh& mesh_W, const GeoOrigin& origin, const StoreConfig& config,
                            const std::string& out_dir);
 
