@@ -100,6 +100,21 @@ TEST(TileStreamer, FailedPublicationIsRetried) {
   EXPECT_EQ(s.update("uav0", {25, 25, 11}).publish, (std::vector<TileKey>{{0, 0}}));
 }
 
+TEST(TileStreamer, StopsPublishingAtTheWritersInstanceLimit) {
+  TileStreamer s(test::grid_index(-10, 9), 150.0, 12);  // the writer can latch 12 tiles
+  EXPECT_EQ(s.update("uav0", {25, 25, 10}).publish.size(), 9u);
+  const StreamDecision d = s.update("uav0", {125, 25, 10});  // needs columns 2 and 3: 6 more
+  EXPECT_EQ(d.publish.size(), 3u);
+  EXPECT_EQ(d.over_limit.size(), 3u);
+  EXPECT_EQ(s.published_count(), 12u);
+  for (const TileKey& k : d.over_limit) EXPECT_FALSE(s.holds("uav0", k));
+  // Latched tiles still reach other vehicles; the ones over the limit stay pending, never half-sent.
+  const StreamDecision other = s.update("uav1", {25, 25, 10});
+  EXPECT_EQ(other.new_for_vehicle.size(), 9u);
+  EXPECT_TRUE(other.publish.empty());
+  EXPECT_EQ(s.update("uav0", {125, 25, 11}).over_limit.size(), 3u);
+}
+
 TEST(TileStreamer, RequestSendsWhatTheRequesterLacksEvenIfLatched) {
   TileStreamer s(test::grid_index(-10, 9), 150.0);
   s.update("uav0", {25, 25, 10});  // publishes -1..1 x -1..1

@@ -10,7 +10,8 @@ namespace twinslam::tiles {
 TilesNode::TilesNode(dds::Node& node, dds::Counters& counters, const TilesConfig& config)
     : node_(node),
       counters_(counters),
-      streamer_(twin::read_twin_index(config.twin_dir), config.window_m),
+      streamer_(twin::read_twin_index(config.twin_dir), config.window_m,
+                static_cast<std::size_t>(config.max_tiles_on_wire)),
       cache_(static_cast<std::size_t>(config.cache_tiles), TileCache::store_loader(config.twin_dir)),
       enu_(streamer_.grid().origin()),
       writer_(node.writer<msg::MapTile>(dds::topics::kMapTile)) {
@@ -69,6 +70,13 @@ void TilesNode::on_request(const msg::TileRequest& m) {
 
 void TilesNode::send(const StreamDecision& d) {
   counters_.add("tiles_latched", d.new_for_vehicle.size() - std::min(d.new_for_vehicle.size(), d.publish.size()));
+  if (!d.over_limit.empty()) {
+    if (counters_.get("tiles_over_limit") == 0) {
+      spdlog::warn("{} tiles are latched on the wire (max_tiles_on_wire): new tiles are no longer sent",
+                   streamer_.published_count());
+    }
+    counters_.add("tiles_over_limit", d.over_limit.size());
+  }
   for (const twin::TileKey& key : d.publish) {
     if (!publish_tile(key)) {
       counters_.add("tiles_failed");

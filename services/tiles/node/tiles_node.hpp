@@ -3,7 +3,8 @@
 // one sample per tile). The decisions live in twinslam_tiles_core: VehiclePositions picks the position (aligned
 // odometry, else GNSS converted to W at the twin's origin), TileStreamer the tiles each vehicle still needs and which
 // of them are not yet on the wire, TileCache their encoded bytes. Heartbeat counters: tiles_sent, bytes_sent,
-// tiles_latched (needed by a vehicle but already on the wire), tiles_failed, and the inputs.
+// tiles_latched (needed by a vehicle but already on the wire), tiles_failed, tiles_over_limit (max_tiles_on_wire
+// reached), and the inputs.
 #include <mutex>
 #include <string>
 

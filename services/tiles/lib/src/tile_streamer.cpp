@@ -7,8 +7,19 @@
 
 namespace twinslam::tiles {
 
-TileStreamer::TileStreamer(const twin::TwinIndex& index, double window_m)
-    : grid_(index), half_size_m_(0.5 * window_m) {}
+TileStreamer::TileStreamer(const twin::TwinIndex& index, double window_m, std::size_t max_on_wire)
+    : grid_(index), half_size_m_(0.5 * window_m), max_on_wire_(max_on_wire) {}
+
+bool TileStreamer::admit(KeySet& held, const twin::TileKey& key, bool* newly_published) {
+  *newly_published = false;
+  if (published_.count(key) == 0) {
+    if (published_.size() >= max_on_wire_) return false;
+    published_.insert(key);
+    *newly_published = true;
+  }
+  held.insert(key);
+  return true;
+}
 
 void TileStreamer::sort_nearest(std::vector<twin::TileKey>* keys, const Eigen::Vector2d& p_W) const {
   // Nearest first: if the link is slow, the tile under the vehicle arrives before the window's corners.
@@ -23,9 +34,14 @@ StreamDecision TileStreamer::update(const std::string& vehicle, const Eigen::Vec
   const Eigen::Vector2d p = p_W.head<2>();
   KeySet& held = held_[vehicle];
   for (const twin::TileKey& key : grid_.tiles_in({p, half_size_m_})) {
-    if (!held.insert(key).second) continue;
+    if (held.count(key) != 0) continue;
+    bool newly_published = false;
+    if (!admit(held, key, &newly_published)) {
+      d.over_limit.push_back(key);
+      continue;
+    }
     d.new_for_vehicle.push_back(key);
-    if (published_.insert(key).second) d.publish.push_back(key);
+    if (newly_published) d.publish.push_back(key);
   }
   sort_nearest(&d.new_for_vehicle, p);
   sort_nearest(&d.publish, p);
@@ -43,9 +59,13 @@ StreamDecision TileStreamer::request(const std::string& vehicle, const Eigen::Ve
   held = KeySet(have.begin(), have.end());
   StreamDecision d;
   for (const twin::TileKey& key : grid_.tiles_in({center_W, half_size_m})) {
-    if (!held.insert(key).second) continue;
+    if (held.count(key) != 0) continue;
+    bool newly_published = false;
+    if (!admit(held, key, &newly_published)) {
+      d.over_limit.push_back(key);
+      continue;
+    }
     d.new_for_vehicle.push_back(key);
-    published_.insert(key);
   }
   sort_nearest(&d.new_for_vehicle, center_W);
   d.publish = d.new_for_vehicle;  // the requester says it lacks them: latched or not, send them again

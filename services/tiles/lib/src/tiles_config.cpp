@@ -34,6 +34,9 @@ void TilesConfig::validate(const std::string& source) const {
     bad(source, 0, "window_m", "must lie in (0, 1000] m, got " + std::to_string(window_m));
   }
   if (cache_tiles < 1) bad(source, 0, "cache_tiles", "must be >= 1, got " + std::to_string(cache_tiles));
+  if (max_tiles_on_wire < 1) {
+    bad(source, 0, "max_tiles_on_wire", "must be >= 1, got " + std::to_string(max_tiles_on_wire));
+  }
   if (twin_dir.empty()) bad(source, 0, "twin_dir", "must name the twin store directory");
 }
 
@@ -54,10 +57,12 @@ TilesConfig parse_tiles_config(const std::string& text, const std::string& file,
       config.window_m = read<double>(file, key, value, "a number [m]");
     } else if (key == "cache_tiles") {
       config.cache_tiles = read<int>(file, key, value, "an integer");
+    } else if (key == "max_tiles_on_wire") {
+      config.max_tiles_on_wire = read<int>(file, key, value, "an integer");
     } else if (key == "twin_dir") {
       config.twin_dir = read<std::string>(file, key, value, "a path");
     } else {
-      bad(file, line_of(item.first), key, "unknown key (known: window_m, cache_tiles, twin_dir)");
+      bad(file, line_of(item.first), key, "unknown key (known: window_m, cache_tiles, twin_dir, max_tiles_on_wire)");
     }
   }
   return config;

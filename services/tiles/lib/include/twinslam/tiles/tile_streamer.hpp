@@ -23,12 +23,16 @@ namespace twinslam::tiles {
 struct StreamDecision {
   std::vector<twin::TileKey> new_for_vehicle;  // tiles the vehicle now holds that it did not before, nearest first
   std::vector<twin::TileKey> publish;          // of those, the ones to write on the wire, nearest first
+  std::vector<twin::TileKey> over_limit;       // needed but not sent: max_on_wire tiles are already latched
 };
 
 class TileStreamer {
  public:
-  // window_m: side of the square window [m] (TilesConfig::window_m, validated there).
-  TileStreamer(const twin::TwinIndex& index, double window_m);
+  // window_m: side of the square window [m]; max_on_wire: tiles the writer can latch (TilesConfig, validated there).
+  // The writer keeps every published tile (one sample per instance) up to tile.writer's max_instances (4096 in
+  // deploy/qos/twinslam.xml); past that a write would block and fail, so the streamer stops publishing new tiles and
+  // reports them as over_limit (not held: they are tried again on later updates).
+  TileStreamer(const twin::TwinIndex& index, double window_m, std::size_t max_on_wire = 4096);
 
   // A new position p_W of `vehicle` [m, W] (height ignored: tiles hold all heights).
   StreamDecision update(const std::string& vehicle, const Eigen::Vector3d& p_W);
@@ -53,9 +57,12 @@ class TileStreamer {
  private:
   using KeySet = std::unordered_set<twin::TileKey, TileKeyHash>;
   void sort_nearest(std::vector<twin::TileKey>* keys, const Eigen::Vector2d& p_W) const;
+  // Marks `key` held by the vehicle and published if there is room; false (nothing marked) if it is over the limit.
+  bool admit(KeySet& held, const twin::TileKey& key, bool* newly_published);
 
   TileGrid grid_;
   double half_size_m_;
+  std::size_t max_on_wire_;
   std::unordered_map<std::string, KeySet> held_;  // vehicle id -> tiles it holds
   KeySet published_;                              // tiles written on the wire (latched for every reader)
 };

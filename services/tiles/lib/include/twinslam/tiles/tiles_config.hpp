@@ -4,6 +4,7 @@
 //   window_m: 150      # side of the square window around each vehicle [m]
 //   cache_tiles: 64    # encoded tiles kept in memory (LRU)
 //   twin_dir: /data/twin
+//   max_tiles_on_wire: 4096
 #include <string>
 
 namespace twinslam::tiles {
@@ -12,6 +13,7 @@ struct TilesConfig {
   double window_m = 150.0;  // side of the square window (in E, N) centred on the vehicle [m]
   int cache_tiles = 64;     // tiles whose encoded bytes stay in memory (LRU); a re-send needs no disk read
   std::string twin_dir;     // the twin store (`twinslam twin build` output)
+  int max_tiles_on_wire = 4096;  // tiles the MapTile writer latches; at most tile.writer's max_instances (QoS XML)
 
   // Throws twinslam::InputError "SOURCE: tiles key 'K': what" naming the first bad field.
   void validate(const std::string& source = "TilesConfig") const;
