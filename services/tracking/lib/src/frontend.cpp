@@ -8,6 +8,7 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "detector.hpp"
+#include "reference_patch.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/tracking/ransac.hpp"
 
@@ -65,6 +66,11 @@ FrameResult Frontend::track(std::int64_t stamp_ns, const cv::Mat& mono8, const E
     clahe_->apply(mono8, clahe_buffer_);
     image = &clahe_buffer_;
   }
+  if (config_.presmooth_sigma_px > 0.0) {
+    cv::GaussianBlur(*image, smooth_buffer_, cv::Size(0, 0), config_.presmooth_sigma_px, config_.presmooth_sigma_px,
+                     cv::BORDER_REFLECT_101);
+    image = &smooth_buffer_;
+  }
   // Derivatives are stored with the pyramid: this frame is KLT's "previous" image twice (backward check now, forward
   // at the next frame), so they are computed once. No reuse of the input buffer: the caller may overwrite it.
   cv::buildOpticalFlowPyramid(*image, curr_pyramid_, cv::Size(config_.klt_window_px, config_.klt_window_px),
@@ -74,7 +80,7 @@ FrameResult Frontend::track(std::int64_t stamp_ns, const cv::Mat& mono8, const E
 
   if (has_prev_ && !tracks_.empty()) {
     std::vector<Eigen::Vector3d> f_prev;
-    track_klt(R_prev_curr_C, &f_prev, &result);
+    track_klt(*image, R_prev_curr_C, &f_prev, &result);
     const auto t_klt = Clock::now();
     result.timing.klt_ms = ms_between(t_pre, t_klt);
     reject_outliers(f_prev, R_prev_curr_C, &result);
@@ -107,8 +113,8 @@ void Frontend::predict(const Eigen::Matrix3d& R_prev_curr_C, std::vector<cv::Poi
   }
 }
 
-void Frontend::track_klt(const Eigen::Matrix3d* R_prev_curr_C, std::vector<Eigen::Vector3d>* f_prev,
-                         FrameResult* result) {
+void Frontend::track_klt(const cv::Mat& image, const Eigen::Matrix3d* R_prev_curr_C,
+                         std::vector<Eigen::Vector3d>* f_prev, FrameResult* result) {
   const std::size_t n = tracks_.size();
   std::vector<cv::Point2f> prev(n), guess(n);
   for (std::size_t i = 0; i < n; ++i) prev[i] = tracks_[i].px;
@@ -139,7 +145,15 @@ void Frontend::track_klt(const Eigen::Matrix3d* R_prev_curr_C, std::vector<Eigen
     fwd.push_back(curr[i]);
     back.push_back(curr[i] - (guess[i] - prev[i]));
   }
-  if (!fwd.empty()) {
+  // The backward pass checks KLT against itself; with the reference alignment on, the alignment to the first frame's
+  // patch is the stronger check (it sees drift the backward pass cannot) and the backward pass would only double the
+  // KLT time, so it is skipped.
+  const bool fb_check = config_.ref_window_px == 0;
+  if (!fb_check) {
+    for (std::size_t k = 0; k < alive.size(); ++k) back[k] = prev[alive[k]];
+    status.assign(alive.size(), 1);
+  }
+  if (!fwd.empty() && fb_check) {
     cv::calcOpticalFlowPyrLK(curr_pyramid_, prev_pyramid_, fwd, back, status, error, window, config_.klt_levels, stop,
                              cv::OPTFLOW_USE_INITIAL_FLOW);
   }
@@ -156,6 +170,18 @@ void Frontend::track_klt(const Eigen::Matrix3d* R_prev_curr_C, std::vector<Eigen
     }
     Track t = tracks_[i];
     t.px = fwd[k];
+    if (t.ref) {
+      // KLT's answer is only the starting point: the first frame's patch decides where the feature is now.
+      ReferencePatch::Warp warp;
+      warp.A = t.ref_A;
+      warp.t = Eigen::Vector2d(t.px.x, t.px.y);
+      if (!t.ref->align(image, config_.ref_min_zncc, &warp) || !camera_->in_image(warp.t, kKltEdgePx)) {
+        ++result->stats.lost_reference;
+        continue;
+      }
+      t.ref_A = warp.A;
+      t.px = cv::Point2f(static_cast<float>(warp.t.x()), static_cast<float>(warp.t.y()));
+    }
     if (!camera_->unproject(Eigen::Vector2d(t.px.x, t.px.y), &t.f_C)) {
       ++result->stats.lost_klt;
       continue;
@@ -211,8 +237,9 @@ void Frontend::prune_and_detect(const cv::Mat& image, FrameResult* result) {
   result->stats.tracked = static_cast<int>(kept.size());
   const int wanted = config_.max_features - static_cast<int>(kept.size());
   for (const cv::Point2f& px : detect_bucketed(image, existing, taken, wanted, config_, &barren_)) {
-    Track t{next_id_, px, Eigen::Vector3d::UnitZ(), 1};
+    Track t{next_id_, px, Eigen::Vector3d::UnitZ(), 1, nullptr, Eigen::Matrix2d::Identity()};
     if (!camera_->unproject(Eigen::Vector2d(px.x, px.y), &t.f_C)) continue;  // outside the lens model's domain
+    if (config_.ref_window_px > 0) t.ref = std::make_shared<const ReferencePatch>(image, px, config_.ref_window_px / 2);
     ++next_id_;
     kept.push_back(t);
     ++result->stats.detected;

@@ -52,6 +52,12 @@ void FrontendConfig::validate(const std::string& source) const {
   positive_int(source, "klt_max_iterations", klt_max_iterations);
   positive(source, "klt_epsilon_px", klt_epsilon_px);
   positive(source, "fb_threshold_px", fb_threshold_px);
+  if (ref_window_px != 0 && (ref_window_px < 5 || ref_window_px % 2 == 0)) {
+    bad(source, "ref_window_px", "must be 0 (off) or odd and >= 5, got " + std::to_string(ref_window_px));
+  }
+  if (!std::isfinite(ref_min_zncc) || ref_min_zncc < -1.0 || ref_min_zncc >= 1.0) {
+    bad(source, "ref_min_zncc", "must lie in [-1, 1), got " + num(ref_min_zncc));
+  }
   positive(source, "ransac_threshold_px", ransac_threshold_px);
   if (!std::isfinite(ransac_confidence) || ransac_confidence <= 0.0 || ransac_confidence >= 1.0) {
     bad(source, "ransac_confidence", "must lie in (0, 1), got " + num(ransac_confidence));
@@ -59,6 +65,9 @@ void FrontendConfig::validate(const std::string& source) const {
   positive_int(source, "ransac_max_iterations", ransac_max_iterations);
   positive(source, "clahe_clip_limit", clahe_clip_limit);
   positive_int(source, "clahe_tiles", clahe_tiles);
+  if (!std::isfinite(presmooth_sigma_px) || presmooth_sigma_px < 0.0 || presmooth_sigma_px > 10.0) {
+    bad(source, "presmooth_sigma_px", "must lie in [0, 10], got " + num(presmooth_sigma_px));
+  }
 }
 
 }  // namespace twinslam::tracking

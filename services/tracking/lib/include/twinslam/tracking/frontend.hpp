@@ -2,11 +2,14 @@
 // The visual frontend: mono8 images in, tracked features (stable id, pixel, undistorted unit bearing, track length)
 // out.
 // Per frame (Frontend::track):
-//   1. optional CLAHE, image pyramid;
+//   1. optional CLAHE, optional Gaussian presmoothing, image pyramid;
 //   2. prediction: each feature's bearing rotated by the gyroscope's rotation since the previous frame and projected
 //      with the camera model, as the KLT initial guess (features far from the camera barely move under translation
 //      at 20 Hz, so rotation explains most of the image motion, and fast turns stay within KLT's basin);
-//   3. pyramidal KLT forward, then backward from the result; a track survives if it comes back within
+//   3. pyramidal KLT forward; then the feature's first-frame patch is aligned to the image under an affine warp
+//      from KLT's answer (reference_patch.hpp), so errors do not accumulate from frame to frame, and a track whose
+//      patch no longer matches its reference (occlusion, a slid silhouette) is dropped. With the alignment off
+//      (ref_window_px = 0), KLT runs backward from its answer instead and a track survives if it comes back within
 //      fb_threshold_px of where it started;
 //   4. RANSAC on bearings drops matches that violate the epipolar geometry (ransac.hpp);
 //   5. tracks closer than min_distance_px / 2 to a longer track are dropped as duplicates, then Shi-Tomasi corners at
@@ -25,6 +28,8 @@
 #include "twinslam/tracking/frontend_config.hpp"
 
 namespace twinslam::tracking {
+
+class ReferencePatch;
 
 struct TrackedFeature {
   std::uint64_t id = 0;                                // unique over the Frontend's life, never reused
@@ -46,6 +51,7 @@ struct FrameTiming {
 struct FrameStats {
   int lost_klt = 0;         // KLT did not converge, left the image, or the pixel has no bearing
   int lost_fb = 0;          // failed the forward-backward check
+  int lost_reference = 0;   // the first frame's patch no longer aligns to the image (see FrontendConfig::ref_*)
   int lost_ransac = 0;      // epipolar outliers
   int pruned = 0;           // closer than min_distance_px / 2 to a longer track
   int tracked = 0;          // survivors carried over from the previous frame
@@ -82,12 +88,15 @@ class Frontend {
     cv::Point2f px;
     Eigen::Vector3d f_C;
     std::uint32_t length;
+    std::shared_ptr<const ReferencePatch> ref;              // appearance at the first frame; null when disabled
+    Eigen::Matrix2d ref_A = Eigen::Matrix2d::Identity();  // linear part of the reference-to-image warp
   };
 
   // Steps of track(); each updates tracks_ and the counts in result->stats.
   void predict(const Eigen::Matrix3d& R_prev_curr_C, std::vector<cv::Point2f>* guess) const;
   // Leaves the survivors in tracks_ and their bearings at the previous frame in *f_prev (same order).
-  void track_klt(const Eigen::Matrix3d* R_prev_curr_C, std::vector<Eigen::Vector3d>* f_prev, FrameResult* result);
+  void track_klt(const cv::Mat& image, const Eigen::Matrix3d* R_prev_curr_C, std::vector<Eigen::Vector3d>* f_prev,
+                 FrameResult* result);
   void reject_outliers(const std::vector<Eigen::Vector3d>& f_prev, const Eigen::Matrix3d* R_prev_curr_C,
                        FrameResult* result);
   void prune_and_detect(const cv::Mat& image, FrameResult* result);
@@ -96,6 +105,7 @@ class Frontend {
   FrontendConfig config_;
   cv::Ptr<cv::CLAHE> clahe_;  // null when config_.clahe is off
   cv::Mat clahe_buffer_;
+  cv::Mat smooth_buffer_;     // the presmoothed image (config_.presmooth_sigma_px)
   std::vector<cv::Mat> prev_pyramid_, curr_pyramid_;
   std::vector<Track> tracks_;
   std::vector<int> barren_;  // per grid bucket: detection visits left to skip (see detector.hpp)

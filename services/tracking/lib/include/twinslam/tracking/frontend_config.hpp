@@ -22,7 +22,12 @@ struct FrontendConfig {
   int klt_levels = 3;               // pyramid levels above the full image (0 = no pyramid)
   int klt_max_iterations = 20;      // per level
   double klt_epsilon_px = 0.03;     // stop when the update is below this [px]
-  double fb_threshold_px = 0.5;     // forward-backward check: max |x_prev - backward(forward(x_prev))| [px]
+  double fb_threshold_px = 0.5;     // forward-backward check: max |x_prev - backward(forward(x_prev))| [px];
+                                    // only with ref_window_px = 0 (else the reference alignment checks each track)
+
+  // --- Alignment to the first frame's patch (affine, see reference_patch.hpp) ---
+  int ref_window_px = 21;           // square patch side [px], odd; 0 = off (plain frame-to-frame KLT, which drifts)
+  double ref_min_zncc = 0.9;        // drop a track whose aligned patch correlates less than this with its reference
 
   // --- RANSAC on bearings (see ransac.hpp) ---
   // kEssential: 8-point essential matrix on bearings; needs no gyro, so a gyro bias cannot reject good tracks (EuRoC
@@ -42,6 +47,12 @@ struct FrontendConfig {
   bool clahe = false;               // contrast-limited adaptive histogram equalization before detection and KLT
   double clahe_clip_limit = 3.0;    // OpenCV's clip limit (contrast amplification cap)
   int clahe_tiles = 8;              // tiles per image side
+
+  // --- Smoothing before detection and tracking ---
+  // Gaussian sigma [px]; 0 = off. Hard, point-sampled edges (the simulator casts one ray per pixel, so edges are
+  // staircases; also sharp, oversampled-lens cameras) give Shi-Tomasi corners on the stairs and let KLT's answer hop
+  // by a pixel fraction from frame to frame; sigma 1 suppresses that at a small cost in precision on smooth images.
+  double presmooth_sigma_px = 1.0;
 
   // Throws twinslam::InputError "SOURCE: tracking key 'K': what" naming the first bad field.
   void validate(const std::string& source = "FrontendConfig") const;
