@@ -104,6 +104,8 @@ int run_pipeline(const RunOptions& o) {
     std::vector<std::string> args{"--vehicle", o.vehicle, replay};
     const std::string camera = (dataset.root / "mav0/cam0/sensor.yaml").string();
     if (s == "tracking") args.insert(args.end(), {"--camera", camera});
+    // The dataset's twin is a PLY, not a tile store (`twinslam twin build`): tiles runs idle until run builds one.
+    if (s == "tiles") args.push_back("--no-twin");
     if (s == "estimator") {
       args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
     }

@@ -22,6 +22,14 @@ TilesNode::TilesNode(dds::Node& node, dds::Counters& counters, const TilesConfig
   node.subscribe<msg::TileRequest>(dds::topics::kTileRequest, [this](const msg::TileRequest& m) { on_request(m); });
 }
 
+void wire_idle_inputs(dds::Node& node, dds::Counters& counters) {
+  node.subscribe<msg::Odometry>(dds::topics::kOdometry,
+                                [&counters](const msg::Odometry&) { counters.add("odometry_in"); });
+  node.subscribe<msg::GnssFix>(dds::topics::kGnss, [&counters](const msg::GnssFix&) { counters.add("gnss_in"); });
+  node.subscribe<msg::TileRequest>(dds::topics::kTileRequest,
+                                   [&counters](const msg::TileRequest&) { counters.add("tile_requests_in"); });
+}
+
 TilesNode::~TilesNode() { node_.close_readers(); }
 
 bool TilesNode::serves(const std::string& vehicle) const {

@@ -18,6 +18,10 @@
 
 namespace twinslam::tiles {
 
+// `--no-twin`: no store to serve (a EuRoC replay, a dataset whose twin is not a tile store yet). The service only
+// counts its inputs, so a deployment that lists it still starts, and says so in its heartbeat (no tiles_sent).
+void wire_idle_inputs(dds::Node& node, dds::Counters& counters);
+
 class TilesNode {
  public:
   // Reads the twin index of config.twin_dir (InputError if missing or malformed) and subscribes the inputs. Serves
