@@ -92,7 +92,8 @@ TEST(TilesConfig, YamlAndValidation) {
   EXPECT_EQ(message("window_m: -1\n"), "t.yaml: tiles key 'window_m': must lie in (0, 1000] m, got -1.000000");
   EXPECT_EQ(message("max_tiles_on_wire: 0\n"), "t.yaml: tiles key 'max_tiles_on_wire': must be >= 1, got 0");
   EXPECT_EQ(message("cache_tiles: 0\n"), "t.yaml: tiles key 'cache_tiles': must be >= 1, got 0");
-  EXPECT_EQ(message("window: 3\n"), "t.yaml:1: tiles key 'window': unknown key (known: window_m, cache_tiles, twin_dir, max_tiles_on_wire)");
+  EXPECT_EQ(message("window: 3\n"),
+            "t.yaml:1: tiles key 'window': unknown key (known: window_m, cache_tiles, twin_dir, max_tiles_on_wire)");
   EXPECT_EQ(message("cache_tiles: many\n"), "t.yaml:1: tiles key 'cache_tiles': expected an integer");
   EXPECT_NE(message("[1, 2"), "no error");
   EXPECT_THROW(parse_tiles_config("window_m: 100\n", "t.yaml").validate("t.yaml"), InputError);  // no twin_dir

@@ -31,7 +31,7 @@ bool wait_for(Pred pred, std::chrono::milliseconds timeout) {
   const auto end = std::chrono::steady_clock::now() + timeout;
   while (!pred()) {
     if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(5ms);
+    std::this_thread::sleep_for(1ms);
   }
   return true;
 }
@@ -73,6 +73,7 @@ struct TileLog {
   std::map<twin::TileKey, test::Receipt> received;
   std::map<twin::TileKey, msg::MapTile> tiles;
   std::atomic<int> update{0};  // the vehicle's update index when a tile arrives
+  std::atomic<unsigned long long> arrivals{0};
 
   void on_tile(const TileGrid& grid, const msg::MapTile& m) {
     const auto key = grid.parse_wire_key(m.tile_key());
@@ -81,6 +82,7 @@ struct TileLog {
     test::Receipt& r = received[*key];
     if (r.count++ == 0) r.update = update.load();
     tiles[*key] = m;
+    ++arrivals;
   }
   std::size_t size() {
     std::lock_guard lock(mutex);
@@ -103,6 +105,7 @@ TEST_F(TilesNodeTest, GnssThenOdometryStreamsEveryNearTileInTimeOnce) {
   const Eigen::Vector3d local_offset(180, -160, 0);  // where T_WB points while it is still in L: must be ignored
   const double rate_hz = 10.0, gnss_until_s = 5.0, slice_s = 60.0;
   std::vector<Eigen::Vector3d> positions;
+  unsigned long long fixes = 0;
   for (int k = 0; k / rate_hz <= slice_s; ++k) {
     const double t = k / rate_hz;
     const Eigen::Vector3d p_W = city_->trajectory.at(t).p_W;
@@ -127,8 +130,14 @@ TEST_F(TilesNodeTest, GnssThenOdometryStreamsEveryNearTileInTimeOnce) {
       f.longitude_deg(lla.y());
       f.altitude_m(lla.z());
       ASSERT_TRUE(gnss.publish(f));
+      ++fixes;
     }
-    std::this_thread::sleep_for(2ms);
+    // Lockstep, so arrival times are exact whatever the machine's load: the node has handled this update (its counters
+    // move after the tiles went out) and every tile it sent has arrived before the vehicle moves on.
+    ASSERT_TRUE(wait_for([&] {
+      return counters.get("odometry_in") >= static_cast<unsigned long long>(k + 1) &&
+             counters.get("gnss_in") >= fixes && log.arrivals.load() >= counters.get("tiles_sent");
+    }, 10s)) << "update " << k;
   }
   // Tiles that came within 75 m must all arrive; wait for them, then a little longer to catch duplicates.
   std::set<twin::TileKey> near;
@@ -186,7 +195,7 @@ TEST_F(TilesNodeTest, LateReaderReceivesTheTilesAlreadyPublished) {
     f.altitude_m(lla.z());
     ASSERT_TRUE(gnss.publish(f));
   }
-  ASSERT_TRUE(wait_for([&] { return counters.get("gnss_in") == 2; }, 5s));
+  ASSERT_TRUE(wait_for([&] { return counters.get("gnss_in") == 2; }, 5s));  // counted after its tiles went out
   const unsigned long long sent = counters.get("tiles_sent");
   ASSERT_GE(sent, 9u);
   ASSERT_TRUE(wait_for([&] { return early.size() == sent; }, 5s));

@@ -1,4 +1,4 @@
-// twinslam-tiles: streams the digital twin's tiles around each vehicle (odometry / GNSS / tile requests in, MapTile out).
+// twinslam-tiles: streams the digital twin's tiles around each vehicle (odometry, GNSS, tile requests in; MapTile out).
 #include <spdlog/spdlog.h>
 
 #include "tiles_node.hpp"
@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   app.add_option("--twin", twin_dir, "Twin store folder (`twinslam twin build` output); required unless --config "
                                      "names twin_dir, and wins over it");
   app.add_option("--config", config_file, "Tiles config YAML: window_m, cache_tiles, twin_dir, max_tiles_on_wire");
-  auto* idle = app.add_flag("--no-twin", no_twin, "Serve no twin, only count the inputs (a deployment without a store)");
+  auto* idle = app.add_flag("--no-twin", no_twin, "Serve no twin, only count the inputs (deployment without a store)");
   idle->excludes(app.get_option("--twin"))->excludes(app.get_option("--config"));
   return dds::service_main("tiles", app, service, argc, argv, [&] {
     dds::Node node(service.node);  // first, so a bad QoS file or profile is reported as such whatever else is missing

@@ -38,16 +38,19 @@ bool TilesNode::serves(const std::string& vehicle) const {
 
 void TilesNode::on_odometry(const msg::Odometry& m) {
   if (!serves(m.vehicle_id())) return;
-  counters_.add("odometry_in");
   std::lock_guard lock(mutex_);
   const auto p_W = positions_.on_odometry(m.vehicle_id(), m.status() == msg::ODOM_ALIGNED, dds::from_msg(m.T_WB().p()));
   if (p_W) send(streamer_.update(m.vehicle_id(), *p_W));
+  counters_.add("odometry_in");  // after its tiles went out: a test can wait for a message's effect
 }
 
 void TilesNode::on_gnss(const msg::GnssFix& m) {
   if (!serves(m.vehicle_id())) return;
-  counters_.add("gnss_in");
   std::lock_guard lock(mutex_);
+  struct Count {  // on every path out, after the fix's tiles went out
+    dds::Counters& c;
+    ~Count() { c.add("gnss_in"); }
+  } count{counters_};
   if (positions_.aligned(m.vehicle_id())) return;  // aligned odometry drives the window: skip the conversion
   Eigen::Vector3d p_W;
   try {
