@@ -5,10 +5,13 @@
 //    before the vehicle is within 50 m of it, none twice, with its Draco bytes and bounds.
 // 2. A reader that joins after the tiles were published still receives every one of them (TRANSIENT_LOCAL), and
 //    nothing is re-published for it.
+// 3. A TileRequest gets exactly the tiles of its window the requester says it lacks, latched or not; a malformed one
+//    is rejected.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <mutex>
@@ -217,6 +220,54 @@ TEST_F(TilesNodeTest, LateReaderReceivesTheTilesAlreadyPublished) {
     EXPECT_EQ(late.received.at(key).count, 1);
     EXPECT_EQ(late.tiles.at(key).points_draco(), m.points_draco());
   }
+}
+
+TEST_F(TilesNodeTest, RequestResendsOnlyWhatTheRequesterLacks) {
+  dds::Node service_node(node_config("tiles", 0)), vehicle(node_config("test", 0));
+  dds::Counters counters;
+  TilesNode node(service_node, counters, tiles_config());
+  const TileGrid grid(city_->index);
+  TileLog log;
+  vehicle.subscribe<msg::MapTile>(dds::topics::kMapTile, [&](const msg::MapTile& m) { log.on_tile(grid, m); });
+  auto gnss = vehicle.writer<msg::GnssFix>(dds::topics::kGnss);
+  auto request = vehicle.writer<msg::TileRequest>(dds::topics::kTileRequest);
+  ASSERT_TRUE(wait_for([&] { return gnss.matched_readers() >= 1 && request.matched_readers() >= 1; }, 5s));
+  const Eigen::Vector3d p_W(0, -60, 20);
+  const Eigen::Vector3d lla = twin::EnuFrame(city_->index.origin).to_lla(p_W);
+  msg::GnssFix f;
+  f.vehicle_id("uav0");
+  f.latitude_deg(lla.x());
+  f.longitude_deg(lla.y());
+  f.altitude_m(lla.z());
+  ASSERT_TRUE(gnss.publish(f));
+  ASSERT_TRUE(wait_for([&] { return counters.get("gnss_in") == 1; }, 5s));
+  const unsigned long long sent = counters.get("tiles_sent");
+  ASSERT_GE(sent, 4u);
+  ASSERT_TRUE(wait_for([&] { return log.arrivals.load() == sent; }, 5s));
+
+  // The vehicle says it holds every tile of the same window but the nearest one (e.g. it evicted it).
+  const std::vector<twin::TileKey> window = grid.tiles_in({p_W.head<2>(), 75.0});
+  const twin::TileKey lost{0, -2};  // the tile under (0, -60)
+  ASSERT_NE(std::find(window.begin(), window.end(), lost), window.end());
+  msg::TileRequest r;
+  r.vehicle_id("uav0");
+  r.center_e_m(p_W.x());
+  r.center_n_m(p_W.y());
+  r.half_size_m(75.0);
+  for (const auto& key : window) {
+    if (!(key == lost)) r.have().push_back(grid.wire_key(key));
+  }
+  ASSERT_TRUE(request.publish(r));
+  r.half_size_m(-1.0);  // malformed: rejected, nothing sent
+  ASSERT_TRUE(request.publish(r));
+  ASSERT_TRUE(wait_for([&] { return counters.get("tile_requests_in") == 2 && log.arrivals.load() == sent + 1; }, 5s));
+  std::this_thread::sleep_for(200ms);
+  service_node.close_readers();
+  vehicle.close_readers();
+  EXPECT_EQ(counters.get("tiles_sent"), sent + 1);
+  EXPECT_EQ(counters.get("tile_requests_rejected"), 1u);
+  std::lock_guard lock(log.mutex);
+  EXPECT_EQ(log.received.at(lost).count, 2);
 }
 
 }  // namespace

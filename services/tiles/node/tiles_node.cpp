@@ -65,7 +65,6 @@ void TilesNode::on_gnss(const msg::GnssFix& m) {
 
 void TilesNode::on_request(const msg::TileRequest& m) {
   if (!serves(m.vehicle_id())) return;
-  counters_.add("tile_requests_in");
   std::lock_guard lock(mutex_);
   std::vector<twin::TileKey> have;
   for (const auto& text : m.have()) {
@@ -77,6 +76,7 @@ void TilesNode::on_request(const msg::TileRequest& m) {
     counters_.add("tile_requests_rejected");
     spdlog::warn("{}", e.what());
   }
+  counters_.add("tile_requests_in");  // after its tiles went out, like odometry_in
 }
 
 void TilesNode::send(const StreamDecision& d) {
