@@ -28,6 +28,8 @@ void add_sim_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--feature-noise", o->sim.feature_config.pixel_sigma, "Pixel noise of the ideal tracks [px]")
       ->capture_default_str();
   cmd->add_flag("--preview", o->sim.preview, "Write preview/top_down.png and a few frames");
+  cmd->add_flag("--no-images{false}", o->sim.images,
+                "Render no images (cam0/data.csv lists none): with --features, a features-only dataset in seconds");
   cmd->add_flag("--quiet", o->quiet, "No progress bar");
   cmd->callback([o, &exit_code] {
     sim::Scenario scenario = sim::load_scenario(o->scenario);

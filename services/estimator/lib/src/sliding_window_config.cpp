@@ -43,6 +43,7 @@ void SlidingWindowConfig::validate() const {
   imu.validate();
   reprojection_noise().validate();
   static_init().validate();
+  motion_init.validate();
   KeyframePolicyConfig k = keyframe;
   k.focal_px = focal_px;
   k.validate();

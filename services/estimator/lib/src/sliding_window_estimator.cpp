@@ -9,6 +9,7 @@
 
 #include "twinslam/core/error.hpp"
 #include "twinslam/estimator/keyframe_policy.hpp"
+#include "twinslam/estimator/motion_init.hpp"
 #include "twinslam/estimator/sliding_window_state.hpp"
 #include "twinslam/estimator/static_init.hpp"
 
@@ -62,7 +63,7 @@ PreintegrationConfig preintegration_config(const SlidingWindowConfig& c) {
   return p;
 }
 
-void start_window(WindowState& s, std::int64_t stamp_ns, const ImuState& state,
+void start_window(WindowState& s, std::int64_t stamp_ns, const ImuState& state, const StatePriorSigmas& sigmas,
                   const std::vector<FeatureBearing>& features) {
   auto f = std::make_unique<WindowFrame>();
   f->id = s.next_frame_id++;
@@ -73,7 +74,9 @@ void start_window(WindowState& s, std::int64_t stamp_ns, const ImuState& state,
   s.frames.push_back(std::move(f));
   s.first_prior_active = true;
   s.first_prior_state = state;
+  s.first_prior_sigmas = sigmas;
   s.initialized = true;
+  s.init_frames.clear();
 }
 
 // Clears the window after divergence; the next static initialization restarts it.
@@ -85,6 +88,7 @@ void reset(WindowState& s) {
   s.initialized = false;
   s.idle_status = EstimatorStatus::kReinitializing;
   s.first_frame_ns = -1;
+  s.init_frames.clear();
 }
 
 // Mean angle [px] between this frame's bearings and the previous frame's, over common tracks. Without features the
@@ -161,8 +165,9 @@ void repropagate(WindowState& s) {
 
 void trim_imu(WindowState& s) {
   if (s.frames.empty()) {
-    // Keep what static initialization needs.
-    const auto keep_ns = static_cast<std::int64_t>((s.config.static_window_s + 1.0) * 1e9);
+    // Keep what the static and motion initializations need.
+    const double keep_s = std::max(s.config.static_window_s, s.config.motion_init.window_s) + 1.0;
+    const auto keep_ns = static_cast<std::int64_t>(keep_s * 1e9);
     if (!s.imu.empty() && s.imu.back().stamp_ns - s.imu.front().stamp_ns > 2 * keep_ns) {
       const std::int64_t t = s.imu.back().stamp_ns - keep_ns;
       s.imu.erase(s.imu.begin(), std::find_if(s.imu.begin(), s.imu.end(), [&](const ImuSample& x) { return x.stamp_ns >= t; }));
@@ -177,6 +182,21 @@ void trim_imu(WindowState& s) {
   s.imu.erase(s.imu.begin(), it);
 }
 
+
+// Buffers the frame and, once motion_init.min_span_s of frames are there, tries the closed-form initialization.
+std::optional<MotionInitResult> try_init_in_motion(WindowState& s, std::int64_t stamp_ns,
+                                                   const std::vector<FeatureBearing>& features) {
+  MotionInitConfig c = s.config.motion_init;
+  c.pixel_sigma = s.config.pixel_sigma;
+  MotionInitFrame frame;
+  frame.stamp_ns = stamp_ns;
+  for (const auto& b : features) frame.bearings[b.id] = b.f_C;
+  s.init_frames.push_back(std::move(frame));
+  const auto window_ns = static_cast<std::int64_t>(c.window_s * 1e9);
+  while (s.init_frames.size() > 1 && stamp_ns - s.init_frames.front().stamp_ns > window_ns) s.init_frames.pop_front();
+  const std::vector<MotionInitFrame> frames(s.init_frames.begin(), s.init_frames.end());
+  return try_motion_init(frames, s.imu, s.config.T_BC, s.config.imu, s.config.gravity_mps2, s.config.focal_px, c);
+}
 }  // namespace
 
 SlidingWindowEstimator::SlidingWindowEstimator(const SlidingWindowConfig& config) : s_(std::make_unique<WindowState>()) {
@@ -236,6 +256,7 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
     const bool still = feature_motion_px(s, features) <= s.config.max_rest_feature_motion_px;
     s.previous_bearings.clear();
     for (const auto& b : features) s.previous_bearings[b.id] = b.f_C;
+    StatePriorSigmas sigmas = static_init_prior_sigmas(s.config);
     if (!init && still) {
       const auto end = std::upper_bound(s.imu.begin(), s.imu.end(), stamp_ns,
                                         [](std::int64_t t, const ImuSample& x) { return t < x.stamp_ns; });
@@ -246,6 +267,14 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
         init->bias = rest->bias;
       }
     }
+    if (!init && s.config.motion_init.enabled) {
+      if (const auto m = try_init_in_motion(s, stamp_ns, features)) {
+        init = m->state;
+        sigmas.velocity_mps = std::max(m->velocity_sigma_mps, s.config.motion_init.velocity_prior_sigma_mps);
+        sigmas.roll_pitch_rad = std::max(m->tilt_sigma_deg * M_PI / 180.0, s.config.motion_init.tilt_prior_sigma_rad);
+        sigmas.gyro_bias_radps = s.config.init_gyro_bias_sigma;
+      }
+    }
     if (!init) {
       FrameEstimate e;
       e.stamp_ns = stamp_ns;
@@ -254,7 +283,7 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
       return finish(e);
     }
     s.previous_bearings.clear();
-    start_window(s, stamp_ns, *init, features);
+    start_window(s, stamp_ns, *init, sigmas, features);
     FrameEstimate e = make_estimate(*s.frames.back(), EstimatorStatus::kTracking);
     s.local_map = LocalMapEstimate{stamp_ns, e.T_LB, {}};
     return finish(e);

@@ -8,7 +8,6 @@
 
 namespace twinslam::estimator {
 
-StatePriorSigmas first_prior_sigmas(const SlidingWindowConfig& c);  // window_solver.cpp
 
 void marginalize_oldest(WindowState& s) {
   WindowFrame& k0 = *s.frames[0];
@@ -22,8 +21,8 @@ void marginalize_oldest(WindowState& s) {
   m.add_factor(&imu, nullptr, {k0.pose.data(), k0.speed_bias.data(), k1.pose.data(), k1.speed_bias.data()});
   std::unique_ptr<ceres::CostFunction> pose_prior, sb_prior;
   if (s.first_prior_active) {
-    pose_prior.reset(new_pose_prior(s.first_prior_state, first_prior_sigmas(s.config)));
-    sb_prior.reset(new_speed_bias_prior(s.first_prior_state, first_prior_sigmas(s.config)));
+    pose_prior.reset(new_pose_prior(s.first_prior_state, s.first_prior_sigmas));
+    sb_prior.reset(new_speed_bias_prior(s.first_prior_state, s.first_prior_sigmas));
     m.add_factor(pose_prior.get(), nullptr, {k0.pose.data()});
     m.add_factor(sb_prior.get(), nullptr, {k0.speed_bias.data()});
   }

@@ -35,7 +35,7 @@ struct VisualTerm {
 
 }  // namespace
 
-StatePriorSigmas first_prior_sigmas(const SlidingWindowConfig& c) {
+StatePriorSigmas static_init_prior_sigmas(const SlidingWindowConfig& c) {
   StatePriorSigmas p;
   p.position_m = c.init_position_sigma_m;
   p.roll_pitch_rad = c.init_roll_pitch_sigma_rad;
@@ -128,9 +128,9 @@ SolveSummary solve_window(WindowState& s) {
   }
   if (s.first_prior_active) {
     WindowFrame& f0 = *s.frames.front();
-    owned.emplace_back(new_pose_prior(s.first_prior_state, first_prior_sigmas(c)));
+    owned.emplace_back(new_pose_prior(s.first_prior_state, s.first_prior_sigmas));
     problem.AddResidualBlock(owned.back().get(), nullptr, f0.pose.data());
-    owned.emplace_back(new_speed_bias_prior(s.first_prior_state, first_prior_sigmas(c)));
+    owned.emplace_back(new_speed_bias_prior(s.first_prior_state, s.first_prior_sigmas));
     problem.AddResidualBlock(owned.back().get(), nullptr, f0.speed_bias.data());
   }
   if (s.prior) problem.AddResidualBlock(s.prior.get(), nullptr, s.prior->parameter_blocks());

@@ -17,7 +17,9 @@ void require_increasing(const fs::path& file, const CsvRow& row, std::int64_t pr
   }
 }
 
-std::vector<ImuRecord> load_imu(const fs::path& file) {
+}  // namespace
+
+std::vector<ImuRecord> load_imu_csv(const fs::path& file) {
   std::vector<ImuRecord> out;
   std::int64_t previous = INT64_MIN;
   read_csv(file, 7, [&](const CsvRow& row) {
@@ -33,6 +35,7 @@ std::vector<ImuRecord> load_imu(const fs::path& file) {
   return out;
 }
 
+namespace {
 std::vector<ImageRecord> load_images(const fs::path& file) {
   std::vector<ImageRecord> out;
   std::int64_t previous = INT64_MIN;
@@ -88,7 +91,7 @@ Dataset load_dataset(const fs::path& dir) {
   ds.root = fs::absolute(dir);
   const fs::path mav0 = ds.root / "mav0";
   if (!fs::is_directory(mav0)) throw InputError(where(dir.string(), 0, "not a EuRoC dataset (no mav0/ folder)"));
-  ds.imu = load_imu(mav0 / "imu0" / "data.csv");
+  ds.imu = load_imu_csv(mav0 / "imu0" / "data.csv");
   ds.images = load_images(mav0 / "cam0" / "data.csv");
   if (const fs::path gnss = mav0 / "gnss0" / "data.csv"; fs::exists(gnss)) ds.gnss = load_gnss(gnss);
   return ds;

@@ -106,13 +106,17 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
     summary.path_length_m += (state.p_W - previous_p).norm();
     previous_p = state.p_W;
     const Eigen::Isometry3d T_WC = state.T_WB() * camera_cfg.T_BC;
+    if (tracks) summary.feature_rows += tracks->add_frame(stamps[k], T_WC, *camera, renderer);
+    if (!options.images) {
+      progress.update(k + 1);
+      continue;
+    }
     const cv::Mat image = renderer.render(T_WC, *camera, scenario.seed * 1000003ULL + k);
     const std::string name = std::to_string(stamps[k]) + ".png";
     if (!cv::imwrite((dir / "mav0/cam0/data" / name).string(), image, png)) {
       throw InputError((dir / "mav0/cam0/data" / name).string() + ": cannot write");
     }
     index << stamps[k] << ',' << name << '\n';
-    if (tracks) summary.feature_rows += tracks->add_frame(stamps[k], T_WC, *camera, renderer);
     if (options.preview && (k == stamps.size() / 4 || k == stamps.size() / 2 || k == 3 * stamps.size() / 4)) {
       preview_frames.push_back(image.clone());
     }

@@ -5,6 +5,7 @@
 #include "twinslam/estimator/imu_types.hpp"
 #include "twinslam/estimator/keyframe_policy.hpp"
 #include "twinslam/estimator/marginalization.hpp"
+#include "twinslam/estimator/motion_init.hpp"
 #include "twinslam/estimator/reprojection_factor.hpp"
 #include "twinslam/estimator/static_init.hpp"
 #include "twinslam/estimator/triangulation.hpp"
@@ -30,8 +31,11 @@ struct SlidingWindowConfig {
   // The IMU rest test alone accepts gentle motion (its thresholds allow a hovering multicopter's vibration), so rest
   // also needs the features to stand still: mean bearing change between consecutive frames of common tracks [px].
   double max_rest_feature_motion_px = 2.0;
-  double init_timeout_s = 5.0;         // no rest seen for this long after the first frame -> reported [s]
+  double init_timeout_s = 5.0;         // neither rest nor a motion initialization for this long -> reported [s]
+  // In motion, the closed-form visual-inertial initialization (motion_init.hpp) starts the window instead.
+  MotionInitConfig motion_init;
   // Prior on the first keyframe: position and yaw fix the gauge of L (L's definition); roll/pitch from gravity.
+  // These are the static initialization's; a motion initialization uses motion_init's velocity and tilt sigmas.
   double init_position_sigma_m = 1e-3;      // [m]
   double init_yaw_sigma_rad = 1e-3;         // [rad]
   double init_roll_pitch_sigma_rad = 0.02;  // [rad] (about 1 deg: the static init's accuracy)

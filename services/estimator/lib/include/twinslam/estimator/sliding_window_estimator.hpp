@@ -9,7 +9,8 @@
 // When a keyframe makes the window exceed its length, the oldest keyframe's landmarks are re-anchored and the keyframe
 // is marginalized into a MarginalizationPrior.
 //
-// L is gravity-aligned with the initial pose's yaw = 0 and position 0 (static initialization). Pure library, no DDS.
+// L is gravity-aligned with the initial pose's yaw = 0 and position 0. The window starts from a static initialization
+// at rest (static_init.hpp) or, in motion, from the closed-form visual-inertial one (motion_init.hpp). Pure library, no DDS.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -34,7 +35,7 @@ struct FrameEstimate {
   std::int64_t stamp_ns = 0;
   EstimatorStatus status = EstimatorStatus::kInitializing;
   bool keyframe = false;
-  bool init_timed_out = false;  // initializing and no rest seen for init_timeout_s (motion init: not yet)
+  bool init_timed_out = false;  // still initializing init_timeout_s after the first frame (neither rest nor motion init)
   Eigen::Isometry3d T_LB = Eigen::Isometry3d::Identity();
   Eigen::Vector3d v_L = Eigen::Vector3d::Zero();  // [m/s]
   ImuBias bias;

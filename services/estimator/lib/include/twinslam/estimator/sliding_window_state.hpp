@@ -9,8 +9,10 @@
 
 #include "twinslam/estimator/landmark.hpp"
 #include "twinslam/estimator/marginalization.hpp"
+#include "twinslam/estimator/motion_init.hpp"
 #include "twinslam/estimator/preintegration.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
+#include "twinslam/estimator/state_prior.hpp"
 
 namespace twinslam::estimator {
 
@@ -41,10 +43,12 @@ struct WindowState {
   std::unique_ptr<MarginalizationPrior> prior;
   bool first_prior_active = false;            // frames.front() still carries the initial-state prior
   ImuState first_prior_state;
+  StatePriorSigmas first_prior_sigmas;        // of the initialization that started the window
   bool initialized = false;
   EstimatorStatus idle_status = EstimatorStatus::kInitializing;
   std::optional<ImuState> pending_init;
   std::unordered_map<std::int64_t, Eigen::Vector3d> previous_bearings;  // while initializing (stillness check)
+  std::deque<MotionInitFrame> init_frames;    // while initializing: the last motion_init.window_s of frames
   std::int64_t first_frame_ns = -1;           // first frame seen since the last (re)start
   std::int64_t last_frame_ns = -1;
   std::int64_t next_frame_id = 0;
@@ -58,6 +62,8 @@ struct SolveSummary {
   int outliers_removed = 0;
 };
 
+// Prior sigmas of the first keyframe after a static initialization (config's init_* values).
+StatePriorSigmas static_init_prior_sigmas(const SlidingWindowConfig& c);
 // Builds the problem from `s`, solves it, syncs landmarks, removes outlier observations and bad landmarks.
 SolveSummary solve_window(WindowState& s);
 // Triangulates features seen in at least config.min_observations window frames that are not landmarks yet.

@@ -39,4 +39,7 @@ struct Dataset {
 // timestamps not strictly increasing, a listed image file that does not exist.
 Dataset load_dataset(const std::filesystem::path& dir);
 
+// Just the IMU file (mav0/imu0/data.csv), with the same checks: for features-only datasets (`sim --no-images`).
+std::vector<ImuRecord> load_imu_csv(const std::filesystem::path& file);
+
 }  // namespace twinslam::ingest

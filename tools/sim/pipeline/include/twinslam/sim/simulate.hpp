@@ -16,6 +16,9 @@ struct SimOptions {
   bool features = false;                 // write mav0/cam0/features.csv
   FeatureTrackConfig feature_config;
   bool preview = false;                  // write DIR/preview/top_down.png and a few frames
+  // false: no images are rendered (cam0/data.csv lists no frames); with `features` this makes a features-only dataset
+  // in seconds, for estimator tests and benchmarks over many seeds.
+  bool images = true;
   bool progress = true;                  // progress bar with ETA on stderr
   int render_threads = 2;                // threads per rendered frame
 };
