@@ -193,6 +193,21 @@ TEST(FrontendConfig, ValidateNamesTheBadKey) {
   config = FrontendConfig{};
   config.ransac_confidence = 1.0;
   EXPECT_THROW(config.validate(), InputError);
+  // The reference alignment, presmoothing and span RANSAC keys (issue 6).
+  config = FrontendConfig{};
+  config.ref_window_px = 0;  // off is allowed
+  EXPECT_NO_THROW(config.validate());
+  config.ref_window_px = 16;
+  EXPECT_THROW(config.validate(), InputError);
+  config = FrontendConfig{};
+  config.ref_min_zncc = 1.0;
+  EXPECT_THROW(config.validate(), InputError);
+  config = FrontendConfig{};
+  config.presmooth_sigma_px = -1.0;
+  EXPECT_THROW(config.validate(), InputError);
+  config = FrontendConfig{};
+  config.ransac_span_frames = 8;
+  EXPECT_THROW(config.validate(), InputError);
 }
 
 }  // namespace

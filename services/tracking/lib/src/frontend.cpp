@@ -41,6 +41,7 @@ void Frontend::reset() {
   tracks_.clear();
   barren_.clear();
   prev_pyramid_.clear();
+  R_valid_.fill(false);
   has_prev_ = false;
 }
 
@@ -58,6 +59,9 @@ FrameResult Frontend::track(std::int64_t stamp_ns, const cv::Mat& mono8, const E
               std::to_string(prev_stamp_ns_) + " ns");
   }
   if (R_prev_curr_C != nullptr && !R_prev_curr_C->allFinite()) bad_input("gyro rotation has non-finite entries");
+
+  R_valid_[frame_index_ % kHistory] = has_prev_ && R_prev_curr_C != nullptr;
+  if (R_valid_[frame_index_ % kHistory]) R_hist_[frame_index_ % kHistory] = *R_prev_curr_C;
 
   FrameResult result;
   result.stamp_ns = stamp_ns;
@@ -84,6 +88,7 @@ FrameResult Frontend::track(std::int64_t stamp_ns, const cv::Mat& mono8, const E
     const auto t_klt = Clock::now();
     result.timing.klt_ms = ms_between(t_pre, t_klt);
     reject_outliers(f_prev, R_prev_curr_C, &result);
+    if (config_.ransac_span_frames > 0) reject_span_outliers(&result);
     result.timing.ransac_ms = ms_between(t_klt, Clock::now());
   }
   const auto t_detect = Clock::now();
@@ -96,6 +101,7 @@ FrameResult Frontend::track(std::int64_t stamp_ns, const cv::Mat& mono8, const E
   std::swap(prev_pyramid_, curr_pyramid_);
   prev_stamp_ns_ = stamp_ns;
   has_prev_ = true;
+  ++frame_index_;
   const auto t_end = Clock::now();
   result.timing.detect_ms = ms_between(t_detect, t_end);
   result.timing.total_ms = ms_between(t_start, t_end);
@@ -187,6 +193,7 @@ void Frontend::track_klt(const cv::Mat& image, const Eigen::Matrix3d* R_prev_cur
       continue;
     }
     ++t.length;
+    t.f_hist[frame_index_ % kHistory] = t.f_C;
     f_prev->push_back(tracks_[i].f_C);
     kept.push_back(t);
   }
@@ -214,6 +221,45 @@ void Frontend::reject_outliers(const std::vector<Eigen::Vector3d>& f_prev, const
   tracks_ = std::move(kept);
 }
 
+void Frontend::reject_span_outliers(FrameResult* result) {
+  // Tracks are seen in every frame of their life, so length > span means the bearing of span frames back is stored.
+  const auto span = static_cast<std::uint32_t>(config_.ransac_span_frames);
+  const std::size_t back = (frame_index_ + kHistory - span) % kHistory;
+  // The rotation over the span, R_then_now = R_(then, then+1) ... R_(now-1, now), if the gyro gave every step.
+  bool rotation_known = frame_index_ >= span;
+  Eigen::Matrix3d R_then_now = Eigen::Matrix3d::Identity();
+  for (std::uint32_t j = span; j >= 1 && rotation_known; --j) {
+    const std::size_t slot = (frame_index_ + kHistory + 1 - j) % kHistory;
+    rotation_known = R_valid_[slot];
+    R_then_now = R_then_now * R_hist_[slot];
+  }
+  std::vector<std::size_t> old;
+  std::vector<Eigen::Vector3d> f_then, f_now;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    if (tracks_[i].length <= span) continue;
+    old.push_back(i);
+    f_then.push_back(tracks_[i].f_hist[back]);
+    f_now.push_back(tracks_[i].f_C);
+  }
+  RansacOptions options;
+  options.threshold_rad = config_.ransac_threshold_px / camera_->intrinsics().fu;
+  options.confidence = config_.ransac_confidence;
+  options.max_iterations = config_.ransac_max_iterations;
+  options.seed = config_.ransac_seed;
+  const bool known = rotation_known && config_.ransac_model == FrontendConfig::RansacModel::kKnownRotation;
+  const RansacResult ransac = known ? ransac_known_rotation(f_then, f_now, R_then_now, options)
+                                    : ransac_essential(f_then, f_now, options);
+  std::vector<bool> drop(tracks_.size(), false);
+  for (std::size_t k = 0; k < old.size(); ++k) drop[old[k]] = !ransac.inlier[k];
+  std::vector<Track> kept;
+  kept.reserve(tracks_.size());
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    if (drop[i]) ++result->stats.lost_span;
+    else kept.push_back(tracks_[i]);
+  }
+  tracks_ = std::move(kept);
+}
+
 void Frontend::prune_and_detect(const cv::Mat& image, FrameResult* result) {
   // Tracks that converged onto one spot (KLT windows sliding onto the same corner) are duplicates: of two tracks closer
   // than half the detection spacing, the longer one (more useful to the estimator) stays. Pruning at the full spacing
@@ -237,8 +283,9 @@ void Frontend::prune_and_detect(const cv::Mat& image, FrameResult* result) {
   result->stats.tracked = static_cast<int>(kept.size());
   const int wanted = config_.max_features - static_cast<int>(kept.size());
   for (const cv::Point2f& px : detect_bucketed(image, existing, taken, wanted, config_, &barren_)) {
-    Track t{next_id_, px, Eigen::Vector3d::UnitZ(), 1, nullptr, Eigen::Matrix2d::Identity()};
+    Track t{next_id_, px, Eigen::Vector3d::UnitZ(), 1, nullptr, Eigen::Matrix2d::Identity(), {}};
     if (!camera_->unproject(Eigen::Vector2d(px.x, px.y), &t.f_C)) continue;  // outside the lens model's domain
+    t.f_hist[frame_index_ % kHistory] = t.f_C;
     if (config_.ref_window_px > 0) t.ref = std::make_shared<const ReferencePatch>(image, px, config_.ref_window_px / 2);
     ++next_id_;
     kept.push_back(t);

@@ -63,6 +63,9 @@ void FrontendConfig::validate(const std::string& source) const {
     bad(source, "ransac_confidence", "must lie in (0, 1), got " + num(ransac_confidence));
   }
   positive_int(source, "ransac_max_iterations", ransac_max_iterations);
+  if (ransac_span_frames < 0 || ransac_span_frames > 7) {
+    bad(source, "ransac_span_frames", "must lie in [0, 7], got " + std::to_string(ransac_span_frames));
+  }
   positive(source, "clahe_clip_limit", clahe_clip_limit);
   positive_int(source, "clahe_tiles", clahe_tiles);
   if (!std::isfinite(presmooth_sigma_px) || presmooth_sigma_px < 0.0 || presmooth_sigma_px > 10.0) {

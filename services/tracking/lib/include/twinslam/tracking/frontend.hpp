@@ -11,11 +11,13 @@
 //      patch no longer matches its reference (occlusion, a slid silhouette) is dropped. With the alignment off
 //      (ref_window_px = 0), KLT runs backward from its answer instead and a track survives if it comes back within
 //      fb_threshold_px of where it started;
-//   4. RANSAC on bearings drops matches that violate the epipolar geometry (ransac.hpp);
+//   4. RANSAC on bearings drops matches that violate the epipolar geometry (ransac.hpp), once against the previous
+//      frame and once against the frame ransac_span_frames back (slow slides need the longer baseline);
 //   5. tracks closer than min_distance_px / 2 to a longer track are dropped as duplicates, then Shi-Tomasi corners at
 //      least min_distance_px from every track fill the grid buckets back up to max_features (detector.hpp), each
 //      with a new id.
 // Not thread-safe; one Frontend per camera.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -53,6 +55,7 @@ struct FrameStats {
   int lost_fb = 0;          // failed the forward-backward check
   int lost_reference = 0;   // the first frame's patch no longer aligns to the image (see FrontendConfig::ref_*)
   int lost_ransac = 0;      // epipolar outliers
+  int lost_span = 0;        // epipolar outliers against the frame FrontendConfig::ransac_span_frames back
   int pruned = 0;           // closer than min_distance_px / 2 to a longer track
   int tracked = 0;          // survivors carried over from the previous frame
   int detected = 0;         // new features
@@ -83,6 +86,7 @@ class Frontend {
   const CameraModel& camera() const { return *camera_; }
 
  private:
+  static constexpr std::size_t kHistory = 8;
   struct Track {
     std::uint64_t id;
     cv::Point2f px;
@@ -90,7 +94,9 @@ class Frontend {
     std::uint32_t length;
     std::shared_ptr<const ReferencePatch> ref;              // appearance at the first frame; null when disabled
     Eigen::Matrix2d ref_A = Eigen::Matrix2d::Identity();  // linear part of the reference-to-image warp
+    std::array<Eigen::Vector3d, kHistory> f_hist;         // f_C of recent frames, at [frame index % kHistory]
   };
+  static_assert(kHistory > 7, "ransac_span_frames may reach 7");
 
   // Steps of track(); each updates tracks_ and the counts in result->stats.
   void predict(const Eigen::Matrix3d& R_prev_curr_C, std::vector<cv::Point2f>* guess) const;
@@ -99,6 +105,7 @@ class Frontend {
                  FrameResult* result);
   void reject_outliers(const std::vector<Eigen::Vector3d>& f_prev, const Eigen::Matrix3d* R_prev_curr_C,
                        FrameResult* result);
+  void reject_span_outliers(FrameResult* result);
   void prune_and_detect(const cv::Mat& image, FrameResult* result);
 
   std::shared_ptr<const CameraModel> camera_;
@@ -112,6 +119,10 @@ class Frontend {
   std::int64_t prev_stamp_ns_ = 0;
   bool has_prev_ = false;
   std::uint64_t next_id_ = 1;
+  std::uint64_t frame_index_ = 0;  // track() calls so far
+  // Gyro rotation R_prev_curr_C given with each of the recent frames, at [frame index % kHistory]; for the span RANSAC.
+  std::array<Eigen::Matrix3d, kHistory> R_hist_;
+  std::array<bool, kHistory> R_valid_{};
 };
 
 }  // namespace twinslam::tracking

@@ -41,6 +41,11 @@ struct FrontendConfig {
   double ransac_threshold_px = 1.0;
   double ransac_confidence = 0.999;  // probability of drawing at least one all-inlier sample
   int ransac_max_iterations = 200;
+  // A second RANSAC between each frame and the frame this many frames back, on the tracks seen in both (ransac_model
+  // as above, kKnownRotation only if the gyro rotation came with every frame of the span; 0 = off, at most 7): a point sliding along an occlusion edge (a corner formed by a near edge over a far surface)
+  // moves off its epipolar line by a fraction of a pixel per frame, which the frame-to-frame test cannot see but
+  // the longer baseline can.
+  int ransac_span_frames = 3;
   unsigned ransac_seed = 42;         // fixed seed: same input -> same tracks
 
   // --- Exposure normalization ---
