@@ -2,7 +2,10 @@
 // seeds"). For each seed: `twinslam sim --scenario tiny --features --no-images --seed S`, then the estimator is fed
 // from START seconds on (the flight rests about 0.8 s at the start, so from 2 s it is in motion and only the motion
 // initialization can start it); prints the time to initialize, the tilt and speed errors at that moment, and the
-// ATE (posyaw) of the rest of the flight. Usage: bench_motion_init_tiny [SEEDS=20] [START_S=2.0]
+// ATE (posyaw) of the rest of the flight and the estimator's time per frame.
+// Usage: bench_motion_init_tiny [SEEDS=20] [START_S=2.0]   or   bench_motion_init_tiny DATASET_DIR [START_S=0]
+// (the second form runs one existing dataset with features.csv, e.g. city-loops, for the time per frame).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -26,6 +29,7 @@ namespace {
 struct SeedResult {
   bool initialized = false;
   double init_after_s = 0.0, tilt_err_deg = 0.0, speed_err_mps = 0.0, ate_m = 0.0, ate_deg = 0.0, length_m = 0.0;
+  double median_ms = 0.0, p99_ms = 0.0;  // estimator time per frame once tracking
 };
 
 const StampedPose* nearest(const Trajectory& t, std::int64_t stamp_ns) {
@@ -55,6 +59,7 @@ SeedResult run_seed(const fs::path& dir, double start_s) {
   while (imu_next < data.imu.size() && data.imu[imu_next].stamp_ns < t_start - 50'000'000) ++imu_next;
   SeedResult r;
   Trajectory estimate;
+  std::vector<double> ms;
   for (const auto& f : frames) {
     if (f.stamp_ns < t_start) continue;
     while (imu_next < data.imu.size() && data.imu[imu_next].stamp_ns <= f.stamp_ns) {
@@ -80,6 +85,12 @@ SeedResult run_seed(const fs::path& dir, double start_s) {
       if (dt > 0) r.speed_err_mps = std::abs((gt_next->p_X() - gt->p_X()).norm() / dt - e.v_L.norm());
     }
     estimate.poses.push_back({f.stamp_ns, e.T_LB});
+    ms.push_back(e.estimator_ms);
+  }
+  if (!ms.empty()) {
+    std::sort(ms.begin(), ms.end());
+    r.median_ms = ms[ms.size() / 2];
+    r.p99_ms = ms[ms.size() * 99 / 100];
   }
   if (estimate.poses.size() > 10) {
     eval::EvalConfig ec;
@@ -95,12 +106,19 @@ SeedResult run_seed(const fs::path& dir, double start_s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && fs::is_directory(argv[1])) {
+    const SeedResult r = run_seed(argv[1], argc > 2 ? std::atof(argv[2]) : 0.0);
+    std::printf("%s: initialized after %.2f s, ATE_p %.3f m over %.1f m (%.2f %%), ATE_R %.2f deg, estimator ms median "
+                "%.2f p99 %.2f\n", argv[1], r.init_after_s, r.ate_m, r.length_m, 100.0 * r.ate_m / r.length_m,
+                r.ate_deg, r.median_ms, r.p99_ms);
+    return r.initialized ? 0 : 1;
+  }
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 20;
   const double start_s = argc > 2 ? std::atof(argv[2]) : 2.0;
   const fs::path exe = fs::path(TWINSLAM_BIN_DIR) / "twinslam";
   int ok = 0;
-  std::printf("| seed | initialized after [s] | tilt error [deg] | speed error [m/s] | ATE_p [m] | ATE_R [deg] | path [m] |\n"
-              "|---|---|---|---|---|---|---|\n");
+  std::printf("| seed | initialized after [s] | tilt error [deg] | speed error [m/s] | ATE_p [m] | ATE_R [deg] | path [m] | "
+              "ms median | ms p99 |\n|---|---|---|---|---|---|---|---|---|\n");
   for (int seed = 1; seed <= seeds; ++seed) {
     const fs::path dir = fs::temp_directory_path() / ("twinslam_mi_" + std::to_string(::getpid()) + "_" + std::to_string(seed));
     const std::string cmd = exe.string() + " sim --scenario tiny --features --no-images --quiet --seed " +
@@ -114,8 +132,8 @@ int main(int argc, char** argv) {
     const bool within = r.initialized && r.init_after_s <= 3.0;
     ok += within ? 1 : 0;
     if (r.initialized) {
-      std::printf("| %d | %.2f | %.2f | %.3f | %.3f | %.2f | %.0f |\n", seed, r.init_after_s, r.tilt_err_deg,
-                  r.speed_err_mps, r.ate_m, r.ate_deg, r.length_m);
+      std::printf("| %d | %.2f | %.2f | %.3f | %.3f | %.2f | %.0f | %.1f | %.1f |\n", seed, r.init_after_s,
+                  r.tilt_err_deg, r.speed_err_mps, r.ate_m, r.ate_deg, r.length_m, r.median_ms, r.p99_ms);
     } else {
       std::printf("| %d | never | | | | | |\n", seed);
     }
