@@ -32,6 +32,12 @@ Frontend::Frontend(std::shared_ptr<const CameraModel> camera, const FrontendConf
     : camera_(std::move(camera)), config_(config) {
   if (!camera_) bad_input("no camera model given");
   config_.validate();
+  // The presmoothing lowers every corner's minimum eigenvalue (squared gradients), so the absolute floor, which is
+  // set for unsmoothed images, is lowered with it: a Gaussian of sigma s scales a gradient at the 3x3 Sobel scale by
+  // about 1 / (1 + s^2), the eigenvalue by the square of that.
+  detection_config_ = config_;
+  const double attenuation = 1.0 / (1.0 + config_.presmooth_sigma_px * config_.presmooth_sigma_px);
+  detection_config_.min_eigenvalue *= attenuation * attenuation;
   if (config_.clahe) {
     clahe_ = cv::createCLAHE(config_.clahe_clip_limit, cv::Size(config_.clahe_tiles, config_.clahe_tiles));
   }
@@ -282,7 +288,7 @@ void Frontend::prune_and_detect(const cv::Mat& image, FrameResult* result) {
   }
   result->stats.tracked = static_cast<int>(kept.size());
   const int wanted = config_.max_features - static_cast<int>(kept.size());
-  for (const cv::Point2f& px : detect_bucketed(image, existing, taken, wanted, config_, &barren_)) {
+  for (const cv::Point2f& px : detect_bucketed(image, existing, taken, wanted, detection_config_, &barren_)) {
     Track t{next_id_, px, Eigen::Vector3d::UnitZ(), 1, nullptr, Eigen::Matrix2d::Identity(), {}};
     if (!camera_->unproject(Eigen::Vector2d(px.x, px.y), &t.f_C)) continue;  // outside the lens model's domain
     t.f_hist[frame_index_ % kHistory] = t.f_C;

@@ -110,6 +110,7 @@ class Frontend {
 
   std::shared_ptr<const CameraModel> camera_;
   FrontendConfig config_;
+  FrontendConfig detection_config_;  // config_ with min_eigenvalue scaled for the presmoothing
   cv::Ptr<cv::CLAHE> clahe_;  // null when config_.clahe is off
   cv::Mat clahe_buffer_;
   cv::Mat smooth_buffer_;     // the presmoothed image (config_.presmooth_sigma_px)
