@@ -88,7 +88,8 @@ TEST(MotionInit, RejectsTooLittleDataAndBadConfig) {
 }
 
 // The estimator, never at rest and never told the state, initializes within 3 s of its first frame and then follows
-// the flight: ATE after posyaw alignment (L is gravity-aligned with its own yaw and origin) below 0.3 m over ~10 s (15 m), ATE_R below 2 deg, on three seeds.
+// the flight: ATE after posyaw alignment (L is gravity-aligned with its own yaw and origin) below 0.3 m over ~10 s
+// (15 m), ATE_R below 2 deg, on three seeds.
 TEST(SlidingWindow, InitializesInMotionAndFollowsTheFlight) {
   for (unsigned seed : {23u, 24u, 25u}) {
     const SimRun run = testing::make_sim_run(12.0, 0.5, seed);
