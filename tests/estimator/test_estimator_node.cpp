@@ -12,21 +12,14 @@
 
 #include "estimator_node.hpp"
 #include "twinslam/dds/topics.hpp"
+#include "wait_for.hpp"
 
 namespace twinslam::estimator {
 namespace {
 
 using namespace std::chrono_literals;
 
-template <class Pred>
-bool wait_for(Pred pred, std::chrono::milliseconds timeout) {
-  const auto end = std::chrono::steady_clock::now() + timeout;
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(5ms);
-  }
-  return true;
-}
+using testing::wait_for;
 
 TEST(EstimatorNode, OdometryAndAckPerFrameOfItsVehicle) {
   const int domain = 150 + static_cast<int>(::getpid() % 80);  // away from the default domain and other test runs

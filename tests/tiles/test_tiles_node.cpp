@@ -22,6 +22,7 @@
 #include "streaming_check.hpp"
 #include "tiles_node.hpp"
 #include "twinslam/dds/convert.hpp"
+#include "wait_for.hpp"
 
 namespace twinslam::tiles {
 namespace {
@@ -29,15 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-template <class Pred>
-bool wait_for(Pred pred, std::chrono::milliseconds timeout) {
-  const auto end = std::chrono::steady_clock::now() + timeout;
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(1ms);
-  }
-  return true;
-}
+using testing::wait_for;
 
 class TilesNodeTest : public ::testing::Test {
  protected:

@@ -28,12 +28,8 @@ void TileStreamer::sort_nearest(std::vector<twin::TileKey>* keys, const Eigen::V
   });
 }
 
-StreamDecision TileStreamer::update(const std::string& vehicle, const Eigen::Vector3d& p_W) {
-  StreamDecision d;
-  if (!p_W.allFinite()) return d;
-  const Eigen::Vector2d p = p_W.head<2>();
-  KeySet& held = held_[vehicle];
-  for (const twin::TileKey& key : grid_.tiles_in({p, half_size_m_})) {
+void TileStreamer::admit_window(KeySet& held, const Window& window, StreamDecision& d) {
+  for (const twin::TileKey& key : grid_.tiles_in(window)) {
     if (held.count(key) != 0) continue;
     bool newly_published = false;
     if (!admit(held, key, &newly_published)) {
@@ -43,8 +39,15 @@ StreamDecision TileStreamer::update(const std::string& vehicle, const Eigen::Vec
     d.new_for_vehicle.push_back(key);
     if (newly_published) d.publish.push_back(key);
   }
-  sort_nearest(&d.new_for_vehicle, p);
-  sort_nearest(&d.publish, p);
+  sort_nearest(&d.new_for_vehicle, window.center_W);
+  sort_nearest(&d.publish, window.center_W);
+}
+
+StreamDecision TileStreamer::update(const std::string& vehicle, const Eigen::Vector3d& p_W) {
+  StreamDecision d;
+  if (!p_W.allFinite()) return d;
+  const Eigen::Vector2d p = p_W.head<2>();
+  admit_window(held_[vehicle], {p, half_size_m_}, d);
   return d;
 }
 
@@ -58,16 +61,7 @@ StreamDecision TileStreamer::request(const std::string& vehicle, const Eigen::Ve
   KeySet& held = held_[vehicle];
   held = KeySet(have.begin(), have.end());
   StreamDecision d;
-  for (const twin::TileKey& key : grid_.tiles_in({center_W, half_size_m})) {
-    if (held.count(key) != 0) continue;
-    bool newly_published = false;
-    if (!admit(held, key, &newly_published)) {
-      d.over_limit.push_back(key);
-      continue;
-    }
-    d.new_for_vehicle.push_back(key);
-  }
-  sort_nearest(&d.new_for_vehicle, center_W);
+  admit_window(held, {center_W, half_size_m}, d);
   d.publish = d.new_for_vehicle;  // the requester says it lacks them: latched or not, send them again
   return d;
 }

@@ -59,6 +59,9 @@ class TileStreamer {
   void sort_nearest(std::vector<twin::TileKey>* keys, const Eigen::Vector2d& p_W) const;
   // Marks `key` held by the vehicle and published if there is room; false (nothing marked) if it is over the limit.
   bool admit(KeySet& held, const twin::TileKey& key, bool* newly_published);
+  // Admits every tile of `window` the vehicle does not hold into `d` (new_for_vehicle, publish, over_limit), nearest
+  // first.
+  void admit_window(KeySet& held, const Window& window, StreamDecision& d);
 
   TileGrid grid_;
   double half_size_m_;
