@@ -27,7 +27,6 @@ struct FrameMotion {
   double t_s = 0.0;                                  // since frame 0 [s]
   Eigen::Matrix3d R_0k = Eigen::Matrix3d::Identity();
   Eigen::Vector3d dp_0k = Eigen::Vector3d::Zero();   // [m, B_0]
-  Eigen::Vector3d dv_0k = Eigen::Vector3d::Zero();   // [m/s, B_0]
   std::shared_ptr<Preintegration> pre;               // null for frame 0
 };
 
@@ -44,7 +43,6 @@ std::vector<FrameMotion> integrate(const std::vector<MotionInitFrame>& frames, c
     m.t_s = m.pre->dt();
     m.R_0k = m.pre->delta().R;
     m.dp_0k = m.pre->delta().p;
-    m.dv_0k = m.pre->delta().v;
   }
   return out;
 }
@@ -134,7 +132,7 @@ Eigen::Vector3d landmark(const Reduced& red, std::size_t j, const Vector6d& x) {
 }
 
 // Minimizes over x with |g| = G (VINS-Mono's RefineGravity): g = G g_hat + B w on the tangent plane, a few times.
-Vector6d solve_on_sphere(const Reduced& red, Vector6d x, double G, Eigen::Matrix<double, 5, 5>* H5) {
+Vector6d solve_on_sphere(const Reduced& red, Vector6d x, double G) {
   for (int it = 0; it < 4; ++it) {
     const Eigen::Vector3d g_hat = x.tail<3>().normalized();
     const Eigen::Vector3d any = std::abs(g_hat.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
@@ -145,8 +143,8 @@ Vector6d solve_on_sphere(const Reduced& red, Vector6d x, double G, Eigen::Matrix
     T.block<3, 1>(3, 4) = b2;
     Vector6d x0 = Vector6d::Zero();
     x0.tail<3>() = G * g_hat;
-    *H5 = T.transpose() * red.H * T;
-    const Eigen::Matrix<double, 5, 1> y = H5->ldlt().solve(T.transpose() * (red.r - red.H * x0));
+    const Eigen::Matrix<double, 5, 5> H5 = T.transpose() * red.H * T;
+    const Eigen::Matrix<double, 5, 1> y = H5.ldlt().solve(T.transpose() * (red.r - red.H * x0));
     x.head<3>() = y.head<3>();
     x.tail<3>() = G * (G * g_hat + b1 * y(3) + b2 * y(4)).normalized();
   }
@@ -224,8 +222,7 @@ std::optional<MotionInitResult> try_motion_init(const std::vector<MotionInitFram
   if (!x.allFinite() || std::abs(x.tail<3>().norm() / gravity_mps2 - 1.0) > c.max_gravity_norm_error) {
     return std::nullopt;
   }
-  Eigen::Matrix<double, 5, 5> H5;
-  x = solve_on_sphere(red, x, gravity_mps2, &H5);
+  x = solve_on_sphere(red, x, gravity_mps2);
 
   // Maximum-likelihood refinement on the angles with the IMU biases (motion_init_refine.hpp), then quality.
   RefineProblem pb;

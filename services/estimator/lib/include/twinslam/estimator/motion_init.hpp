@@ -6,10 +6,12 @@
 // gives dp_0k, so the camera centre of frame k in B_0 is c_k = v_0 t_k + g t_k^2 / 2 + dp_0k + R_0k t_BC, linear in
 // the unknown initial velocity v_0 and gravity g (both in B_0). Every observation f_kj of a landmark P_j says P_j lies
 // on the ray from c_k along d_kj = R_0k R_BC f_kj: [d_kj]x (P_j - c_k) = 0, linear in (v_0, g, P_j). The landmarks are
-// eliminated by a Schur complement (3x3 blocks), leaving 6 unknowns. Metric scale comes from the accelerometer, so
-// the solution exists only with enough acceleration and parallax; the covariance of the 6-vector and the
-// rays' residuals decide whether it is trusted. The gyro bias is taken as zero (its effect over 2 s is below the
-// tilt accuracy asked for) and refined by the sliding window afterwards, like the accelerometer bias.
+// eliminated by a Schur complement (3x3 blocks), leaving 6 unknowns. That linear solution (which ignores the IMU
+// biases and is biased by noisy ray directions) starts a small maximum-likelihood bundle adjustment on the ray angles
+// over v_0, g, both IMU biases and the landmarks (motion_init_refine.hpp). Metric scale comes from the accelerometer,
+// so the solution exists only with enough acceleration and parallax: the refined solution's covariance and its rays'
+// residuals decide whether it is trusted. The window gets the gyro bias; the accelerometer bias, barely separable from
+// gravity in 2 s, starts at zero there as after a static initialization.
 #include <cstdint>
 #include <optional>
 #include <unordered_map>
