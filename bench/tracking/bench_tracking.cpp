@@ -42,7 +42,7 @@ Sequence euroc(int width, int height) {
   const fs::path dir = fs::path(TWINSLAM_SHARED_DIR) / "data/euroc-v1-01-micro";
   const CameraConfig cam = read_camera_sensor_yaml(dir / "mav0/cam0/sensor.yaml");
   const ingest::Dataset data = ingest::load_dataset(dir);
-  std::vector<estimator::ImuSample> imu;
+  std::vector<imu::ImuSample> imu;
   for (const auto& r : data.imu) imu.push_back({r.stamp_ns, r.gyro_radps, r.accel_mps2});
   CameraIntrinsics in = cam.intrinsics;
   const double sx = double(width) / in.width, sy = double(height) / in.height;

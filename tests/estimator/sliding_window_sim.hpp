@@ -33,10 +33,16 @@ inline Eigen::Vector3d noisy_bearing(const Eigen::Vector3d& f, double sigma_rad,
   return (f + d).normalized();
 }
 
-// duration_s of flight; landmarks 15-30 m from the middle of the flight (the trajectory stays well inside), seen within
-// 45 deg of the optical axis and up to 40 m.
+// The landmark cloud: `inner_m` to `outer_m` from the middle of the flight (the trajectory must stay inside), seen within
+// 45 deg of the optical axis and up to `range_m`.
+struct LandmarkShell {
+  double inner_m = 15.0, outer_m = 30.0, range_m = 40.0;
+};
+
+// duration_s of flight in `traj` with noisy biased IMU and noisy bearings of `landmarks` points in `shell`.
 inline SimRun make_sim_run(double duration_s, double pixel_sigma, unsigned seed, int landmarks = 2000,
-                           double focal_px = 460.0, const AnalyticTrajectory& traj = {}) {
+                           double focal_px = 460.0, const AnalyticTrajectory& traj = {},
+                           const LandmarkShell& shell = {}) {
   SimRun run;
   run.bias.gyro << 0.003, -0.002, 0.001;
   run.bias.accel << 0.05, -0.04, 0.06;
@@ -51,7 +57,7 @@ inline SimRun make_sim_run(double duration_s, double pixel_sigma, unsigned seed,
   while (static_cast<int>(points.size()) < landmarks) {
     const Eigen::Vector3d d(u(rng), u(rng), 0.5 * u(rng));
     if (d.norm() < 0.1 || d.norm() > 1.0) continue;
-    points.push_back(centre + d.normalized() * (15.0 + 15.0 * (0.5 + 0.5 * u(rng))));
+    points.push_back(centre + d.normalized() * (shell.inner_m + (shell.outer_m - shell.inner_m) * (0.5 + 0.5 * u(rng))));
   }
   const double cos_fov = std::cos(45.0 * 3.14159265358979 / 180.0);
   for (std::int64_t t = 100'000'000; t <= t_end; t += 50'000'000) {
@@ -61,7 +67,7 @@ inline SimRun make_sim_run(double duration_s, double pixel_sigma, unsigned seed,
     const Eigen::Isometry3d T_LC = geometry::make_pose(f.truth.q_LB, f.truth.p_L) * run.T_BC;
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Eigen::Vector3d p_C = T_LC.inverse() * points[i];
-      if (p_C.norm() > 40.0 || p_C.z() < p_C.norm() * cos_fov) continue;
+      if (p_C.norm() > shell.range_m || p_C.z() < p_C.norm() * cos_fov) continue;
       f.features.push_back({static_cast<std::int64_t>(i), noisy_bearing(p_C.normalized(), pixel_sigma / focal_px, rng)});
     }
     run.frames.push_back(std::move(f));

@@ -29,7 +29,7 @@ class FrontendEuroc : public ::testing::Test {
     const CameraConfig cam = read_camera_sensor_yaml(kEuroc / "mav0/cam0/sensor.yaml");
     camera_ = make_camera(cam.intrinsics);
     const ingest::Dataset data = ingest::load_dataset(kEuroc);
-    std::vector<estimator::ImuSample> imu;
+    std::vector<imu::ImuSample> imu;
     for (const auto& r : data.imu) imu.push_back({r.stamp_ns, r.gyro_radps, r.accel_mps2});
 
     Frontend frontend(camera_);

@@ -9,10 +9,10 @@
 namespace twinslam::tracking {
 namespace {
 
-std::vector<estimator::ImuSample> constant_rate(const Eigen::Vector3d& w_B) {
-  std::vector<estimator::ImuSample> samples;
+std::vector<imu::ImuSample> constant_rate(const Eigen::Vector3d& w_B) {
+  std::vector<imu::ImuSample> samples;
   for (int k = 0; k <= 200; ++k) {  // 1 s at 200 Hz
-    estimator::ImuSample s;
+    imu::ImuSample s;
     s.stamp_ns = 1'000'000'000LL + k * 5'000'000LL;
     s.gyro_B = w_B;
     s.accel_B = Eigen::Vector3d(0, 0, 9.81);

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include <Eigen/Eigenvalues>
 
+#include "modes.hpp"
 #include "monitor.hpp"
 #include "run_pipeline.hpp"
 #include "twinslam/dds/convert.hpp"
@@ -63,6 +64,8 @@ int pick_domain(int requested) {
 }  // namespace
 
 int run_pipeline(const RunOptions& o) {
+  // Refused before anything starts or is written: run.json must never name a mode that did not run.
+  require_implemented_mode(o.mode);
   const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
   if (o.features) ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
   const fs::path out = o.out;
@@ -122,8 +125,8 @@ int run_pipeline(const RunOptions& o) {
   // Readers ingest must see before its first sample: every subscriber of each stream plus this recorder.
   // Camera frames (images, or feature frames with --features) go to tracking or to the estimator.
   const int imu_readers = o.features ? 2 : 3;
-  // GNSS: this recorder, and tiles in twin modes (the estimator subscribes GNSS once it fuses it).
-  const int gnss_readers = 1 + (uses_twin(o.mode) ? 1 : 0);
+  // GNSS: this recorder, the estimator (global inputs, sensor_worker.hpp), and tiles in twin modes.
+  const int gnss_readers = 2 + (uses_twin(o.mode) ? 1 : 0);
   std::vector<std::string> ingest_args{"--dataset", dataset.root.string(), "--vehicle", o.vehicle, replay,
                                        "--wait-readers",
                                        "imu=" + std::to_string(imu_readers) + ",image=2,gnss=" +
@@ -181,8 +184,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("run", "Run the service pipeline on a dataset and write RUN/");
   auto o = std::make_shared<RunOptions>();
   cmd->add_option("dataset", o->dataset, "Dataset folder (EuRoC ASL layout)")->required();
-  cmd->add_option("--mode", o->mode, "vio | vio-gnss | vio-twin | vio-twin-gnss")
-      ->check(CLI::IsMember({"vio", "vio-gnss", "vio-twin", "vio-twin-gnss"}))
+  cmd->add_option("--mode", o->mode, "vio | vio-gnss | vio-gnss-loose | vio-twin | vio-twin-gnss (implemented: " +
+                                         implemented_modes_text() + ")")
+      ->check(CLI::IsMember(all_modes()))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output folder RUN")->required();
   auto* rt = cmd->add_flag("--realtime", o->realtime, "Pace sensors by the wall clock");

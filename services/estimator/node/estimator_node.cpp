@@ -27,9 +27,10 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
       odometry_(node.writer<msg::Odometry>(dds::topics::kOdometry)),
       local_map_(node.writer<msg::LocalMap>(dds::topics::kLocalMap)),
       ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)),
-      worker_(options.imu_wait, [this](const msg::FeatureFrame& frame, std::vector<ImuSample>&& imu) {
-        handle(frame, std::move(imu));
-      }) {
+      worker_(options.imu_wait,
+              [this](const msg::FeatureFrame& frame, std::vector<ImuSample>&& imu, std::vector<GlobalInput>&& global) {
+                handle(frame, std::move(imu), std::move(global));
+              }) {
   node.subscribe<msg::Imu>(dds::topics::kImu, [this](const msg::Imu& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     counters_.add("imu_in");
@@ -42,9 +43,28 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
     counters_.add("features_in");
     worker_.push_frame(std::make_shared<const msg::FeatureFrame>(m), m.stamp_ns());
   });
+  node.subscribe<msg::Registration>(dds::topics::kRegistration, [this](const msg::Registration& m) {
+    if (m.vehicle_id() != node_.config().vehicle_id) return;
+    worker_.push_side(m.keyframe_stamp_ns(), m);
+  });
+  node.subscribe<msg::GnssFix>(dds::topics::kGnss, [this](const msg::GnssFix& m) {
+    if (m.vehicle_id() != node_.config().vehicle_id) return;
+    worker_.push_side(m.stamp_ns(), m);
+  });
 }
 
-void EstimatorNode::handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu) {
+void EstimatorNode::apply(const GlobalInput& input) {
+  // Counted in stamp order on the worker thread; fused by the registration (issue 12) and GNSS (issue 13) work.
+  if (std::holds_alternative<msg::Registration>(input)) {
+    counters_.add("registration_in");
+  } else {
+    counters_.add("gnss_in");
+  }
+}
+
+void EstimatorNode::handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu,
+                           std::vector<GlobalInput>&& global) {
+  for (const auto& g : global) apply(g);
   for (const auto& s : new_imu) {
     try {
       estimator_.add_imu(s);
@@ -69,10 +89,13 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
     odom.vehicle_id(m.vehicle_id());
     odom.stamp_ns(m.stamp_ns());
     odom.seq(odom_seq_++);
-    odom.status(to_msg(e.status));
+    // T_WB = T_WL T_LB in W once some global term has acted on T_WL (ODOM_ALIGNED); before that T_WL is the
+    // identity guess and T_WB equals T_LB.
+    const bool aligned = e.aligned && e.status == EstimatorStatus::kTracking;
+    odom.status(aligned ? msg::ODOM_ALIGNED : to_msg(e.status));
     odom.T_LB(to_msg(e.T_LB));
-    odom.T_WL(to_msg(Eigen::Isometry3d::Identity()));  // aligned by a later issue (registration / GNSS)
-    odom.T_WB(to_msg(e.T_LB));
+    odom.T_WL(to_msg(e.T_WL));
+    odom.T_WB(to_msg(Eigen::Isometry3d(e.T_WL * e.T_LB)));
     odom.v_L(to_msg(e.v_L));
     odom.bias_gyro(to_msg(e.bias.gyro));
     odom.bias_accel(to_msg(e.bias.accel));
@@ -89,7 +112,7 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
       lm.keyframe_stamp_ns(map->keyframe_stamp_ns);
       lm.seq(map_seq_++);
       lm.T_LB(to_msg(map->T_LB));
-      lm.T_WL(to_msg(Eigen::Isometry3d::Identity()));
+      lm.T_WL(to_msg(map->T_WL));
       lm.landmarks().reserve(map->landmarks.size());
       for (const auto& l : map->landmarks) {
         msg::Landmark ml;

@@ -1,12 +1,16 @@
 #pragma once
-// The estimator service's DDS shell: FeatureFrame + Imu in; Odometry per frame, LocalMap per keyframe and a FrameAck
-// per processed FeatureFrame (lockstep replay) out. The algorithm is SlidingWindowEstimator (twinslam_estimator_core).
-// A frame is processed once the IMU has reached its stamp, or after `imu_wait` if the IMU stream ends or lags (the
-// rule of the tracking service): deterministic whenever the IMU covers the frame, never stuck at the end of a dataset.
+// The estimator service's DDS shell: FeatureFrame + Imu in, and the global inputs Registration + GnssFix; Odometry per
+// frame, LocalMap per keyframe and a FrameAck per processed FeatureFrame (lockstep replay) out. The algorithm is
+// SlidingWindowEstimator (twinslam_estimator_core). A frame is processed once the IMU has reached its stamp, or after
+// `imu_wait` if the IMU stream ends or lags (the rule of the tracking service): deterministic whenever the IMU covers
+// the frame, never stuck at the end of a dataset. Global inputs reach the worker thread through the same
+// SensorWorker, in sensor-time order relative to the frames (sensor_worker.hpp); until their fusion lands (map
+// registration: issue 12, GNSS: issue 13) they are only counted.
 #include <chrono>
+#include <variant>
 #include <vector>
 
-#include "twinslam/core/imu_gated_worker.hpp"
+#include "twinslam/core/sensor_worker.hpp"
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
@@ -18,12 +22,17 @@ struct EstimatorNodeOptions {
   std::chrono::milliseconds imu_wait{100};        // how long a frame may wait for IMU past its stamp
 };
 
+// A global measurement on its way to the worker thread, keyed by its sensor stamp (a Registration by the keyframe
+// stamp it answers, a GnssFix by its own).
+using GlobalInput = std::variant<msg::Registration, msg::GnssFix>;
+
 class EstimatorNode {
  public:
   EstimatorNode(dds::Node& node, dds::Counters& counters, EstimatorNodeOptions options);
 
  private:
-  void handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu);
+  void handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu, std::vector<GlobalInput>&& global);
+  void apply(const GlobalInput& input);
   void process(const msg::FeatureFrame& frame);
 
   dds::Node& node_;
@@ -34,8 +43,9 @@ class EstimatorNode {
   dds::Writer<msg::FrameAck> ack_;
 
   unsigned long long odom_seq_ = 0, map_seq_ = 0;
-  // Frames are processed once the IMU reaches their stamp, or after imu_wait (see ImuGatedWorker).
-  ImuGatedWorker<msg::FeatureFrame, ImuSample> worker_;  // last: its thread uses the members above
+  // Frames are processed once the IMU reaches their stamp, or after imu_wait; global inputs in stamp order with them
+  // (see SensorWorker).
+  SensorWorker<msg::FeatureFrame, ImuSample, GlobalInput> worker_;  // last: its thread uses the members above
 };
 
 }  // namespace twinslam::estimator

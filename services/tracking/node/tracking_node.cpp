@@ -19,7 +19,7 @@ TrackingNode::TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNod
       frontend_(std::shared_ptr<const CameraModel>(make_camera(options_.camera.intrinsics)), options_.frontend),
       features_(node.writer<msg::FeatureFrame>(dds::topics::kFeatures)),
       ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)),
-      worker_(options_.imu_wait, [this](const msg::Image& image, std::vector<estimator::ImuSample>&& imu) {
+      worker_(options_.imu_wait, [this](const msg::Image& image, std::vector<imu::ImuSample>&& imu) {
         process(image, std::move(imu));
       }) {
   node.subscribe<msg::Imu>(dds::topics::kImu, [this](const msg::Imu& m) {
@@ -36,7 +36,7 @@ TrackingNode::TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNod
   });
 }
 
-void TrackingNode::process(const msg::Image& m, std::vector<estimator::ImuSample>&& new_imu) {
+void TrackingNode::process(const msg::Image& m, std::vector<imu::ImuSample>&& new_imu) {
   imu_.insert(imu_.end(), new_imu.begin(), new_imu.end());
   const int w = static_cast<int>(m.width()), h = static_cast<int>(m.height());
   if (m.encoding() != "mono8" || m.step() < m.width() || m.data().size() < static_cast<std::size_t>(m.step()) * h ||
@@ -52,7 +52,7 @@ void TrackingNode::process(const msg::Image& m, std::vector<estimator::ImuSample
     }
     // Keep only the IMU needed from this frame on (one sample before it, for interpolation).
     const auto keep = std::find_if(imu_.begin(), imu_.end(),
-                                   [&](const estimator::ImuSample& s) { return s.stamp_ns >= m.stamp_ns(); });
+                                   [&](const imu::ImuSample& s) { return s.stamp_ns >= m.stamp_ns(); });
     imu_.erase(imu_.begin(), keep == imu_.begin() ? imu_.begin() : keep - 1);
     last_frame_ns_ = m.stamp_ns();
     FrameResult result;

@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "twinslam/camera/camera_config.hpp"
-#include "twinslam/core/imu_gated_worker.hpp"
+#include "twinslam/core/sensor_worker.hpp"
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
-#include "twinslam/estimator/imu_types.hpp"
+#include "twinslam/imu/imu_types.hpp"
 #include "twinslam/tracking/frontend.hpp"
 
 namespace twinslam::tracking {
@@ -25,7 +25,7 @@ class TrackingNode {
   TrackingNode(dds::Node& node, dds::Counters& counters, TrackingNodeOptions options);
 
  private:
-  void process(const msg::Image& image, std::vector<estimator::ImuSample>&& new_imu);
+  void process(const msg::Image& image, std::vector<imu::ImuSample>&& new_imu);
   void send_ack(const msg::Image& image);
 
   dds::Node& node_;
@@ -35,10 +35,10 @@ class TrackingNode {
   dds::Writer<msg::FeatureFrame> features_;
   dds::Writer<msg::FrameAck> ack_;
   // Worker-thread state: the IMU since shortly before the previous frame (for the gyro prediction).
-  std::vector<estimator::ImuSample> imu_;
+  std::vector<imu::ImuSample> imu_;
   std::int64_t last_frame_ns_ = -1;
   unsigned long long seq_ = 0;
-  ImuGatedWorker<msg::Image, estimator::ImuSample> worker_;  // last: its thread uses the members above
+  ImuGatedWorker<msg::Image, imu::ImuSample> worker_;  // last: its thread uses the members above
 };
 
 }  // namespace twinslam::tracking

@@ -59,13 +59,7 @@ namespace {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-struct BlockInfo {
-  int size = 0;      // ambient
-  int tangent = 0;   // tangent
-  int offset = -1;   // in the stacked tangent vector [x_m, x_r]
-  BlockKind kind = BlockKind::kEuclidean;
-  bool marginalized = false;
-};
+using BlockInfo = Marginalizer::BlockInfo;
 
 // Triggs' correction of a robustified residual block (see the header): afterwards |r|^2 / 2 and J^T J, J^T r match the
 // loss to second order (first order where rho'' <= 0, as ceres::Corrector).
@@ -91,7 +85,37 @@ Eigen::MatrixXd psd_pseudo_inverse(const Eigen::MatrixXd& A, double eps) {
 
 }  // namespace
 
-std::unique_ptr<MarginalizationPrior> Marginalizer::marginalize() const {
+int DenseLinearization::offset_of(const double* block) const {
+  const auto it = std::find(blocks.begin(), blocks.end(), block);
+  return it == blocks.end() ? -1 : offsets[static_cast<std::size_t>(it - blocks.begin())];
+}
+
+namespace {
+
+// Ambient -> tangent Jacobians of one factor, stacked over its blocks.
+Eigen::MatrixXd tangent_jacobian(const std::vector<RowMajor>& ambient, const std::vector<double*>& blocks,
+                                 const std::unordered_map<double*, BlockInfo>& info, int rows) {
+  int width = 0;
+  for (double* b : blocks) width += info.at(b).tangent;
+  Eigen::MatrixXd J(rows, width);
+  int col = 0;
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    const BlockInfo& bi = info.at(blocks[k]);
+    if (bi.kind == BlockKind::kPose) {
+      const Eigen::Quaterniond q(Eigen::Map<const Eigen::Quaterniond>(blocks[k] + 3));
+      J.middleCols(col, 3) = ambient[k].leftCols(3);
+      J.middleCols(col + 3, 3) = ambient[k].rightCols(4) * quaternion_right_lift(q);
+    } else {
+      J.middleCols(col, bi.size) = ambient[k];
+    }
+    col += bi.tangent;
+  }
+  return J;
+}
+
+}  // namespace
+
+std::unordered_map<double*, Marginalizer::BlockInfo> Marginalizer::layout(DenseLinearization& lin) const {
   // Block layout: marginalized blocks first, then the kept blocks in order of first appearance.
   std::unordered_map<double*, BlockInfo> info;
   std::vector<double*> kept;
@@ -113,68 +137,73 @@ std::unique_ptr<MarginalizationPrior> Marginalizer::marginalize() const {
       if (!bi.marginalized) kept.push_back(b);
     }
   }
-  int m = 0;
+  std::vector<double*> order;
   for (double* b : marginalized_) {
-    const auto it = info.find(b);
-    if (it == info.end()) throw std::logic_error("Marginalizer: a block to marginalize is in no factor");
-    it->second.offset = m;
-    m += it->second.tangent;
+    if (info.find(b) == info.end()) throw std::logic_error("Marginalizer: a block to marginalize is in no factor");
+    order.push_back(b);
   }
-  if (kept.empty()) throw std::logic_error("Marginalizer: no block remains to carry the prior");
-  int total = m;
-  for (double* b : kept) {
-    info[b].offset = total;
-    total += info[b].tangent;
+  order.insert(order.end(), kept.begin(), kept.end());
+  int total = 0;
+  for (double* b : order) {
+    BlockInfo& bi = info[b];
+    bi.offset = total;
+    total += bi.tangent;
+    if (bi.marginalized) lin.marginalized_tangent = total;
+    lin.blocks.push_back(b);
+    lin.kinds.push_back(bi.kind);
+    lin.sizes.push_back(bi.size);
+    lin.tangents.push_back(bi.tangent);
+    lin.offsets.push_back(bi.offset);
   }
+  lin.H = Eigen::MatrixXd::Zero(total, total);
+  lin.g = Eigen::VectorXd::Zero(total);
+  return info;
+}
 
+DenseLinearization Marginalizer::linearize() const {
+  DenseLinearization lin;
+  const std::unordered_map<double*, BlockInfo> info = layout(lin);
   // H = sum J^T J and g = sum J^T r in the stacked tangent coordinates.
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(total, total);
-  Eigen::VectorXd g = Eigen::VectorXd::Zero(total);
   for (const auto& f : factors_) {
     const int rows = f.cost->num_residuals();
     const std::size_t nb = f.blocks.size();
     std::vector<RowMajor> ambient(nb);
     std::vector<double*> jac_ptrs(nb);
     for (std::size_t k = 0; k < nb; ++k) {
-      ambient[k].resize(rows, info[f.blocks[k]].size);
+      ambient[k].resize(rows, info.at(f.blocks[k]).size);
       jac_ptrs[k] = ambient[k].data();
     }
     Eigen::VectorXd r(rows);
     if (!f.cost->Evaluate(f.blocks.data(), r.data(), jac_ptrs.data()) || !r.allFinite()) {
       throw std::runtime_error("Marginalizer: a factor failed to evaluate at the linearization point");
     }
-    // Ambient -> tangent Jacobians, stacked into one matrix over the blocks of this factor.
-    int width = 0;
-    for (double* b : f.blocks) width += info[b].tangent;
-    Eigen::MatrixXd J(rows, width);
-    int col = 0;
-    for (std::size_t k = 0; k < nb; ++k) {
-      const BlockInfo& bi = info[f.blocks[k]];
-      if (bi.kind == BlockKind::kPose) {
-        const Eigen::Quaterniond q(Eigen::Map<const Eigen::Quaterniond>(f.blocks[k] + 3));
-        J.middleCols(col, 3) = ambient[k].leftCols(3);
-        J.middleCols(col + 3, 3) = ambient[k].rightCols(4) * quaternion_right_lift(q);
-      } else {
-        J.middleCols(col, bi.size) = ambient[k];
-      }
-      col += bi.tangent;
-    }
+    Eigen::MatrixXd J = tangent_jacobian(ambient, f.blocks, info, rows);
     apply_loss(f.loss, r, J);
     // Scatter J^T J and J^T r into H and g by block (a block may appear once per factor).
     int ci = 0;
     for (std::size_t a = 0; a < nb; ++a) {
-      const BlockInfo& A = info[f.blocks[a]];
-      g.segment(A.offset, A.tangent) += J.middleCols(ci, A.tangent).transpose() * r;
+      const BlockInfo& A = info.at(f.blocks[a]);
+      lin.g.segment(A.offset, A.tangent) += J.middleCols(ci, A.tangent).transpose() * r;
       int cj = 0;
       for (std::size_t b = 0; b < nb; ++b) {
-        const BlockInfo& B = info[f.blocks[b]];
-        H.block(A.offset, B.offset, A.tangent, B.tangent) +=
+        const BlockInfo& B = info.at(f.blocks[b]);
+        lin.H.block(A.offset, B.offset, A.tangent, B.tangent) +=
             J.middleCols(ci, A.tangent).transpose() * J.middleCols(cj, B.tangent);
         cj += B.tangent;
       }
       ci += A.tangent;
     }
   }
+  return lin;
+}
+
+std::unique_ptr<MarginalizationPrior> Marginalizer::marginalize() const {
+  const DenseLinearization lin = linearize();
+  const int m = lin.marginalized_tangent;
+  const int total = static_cast<int>(lin.H.rows());
+  if (lin.blocks.size() == marginalized_.size()) throw std::logic_error("Marginalizer: no block remains to carry the prior");
+  const Eigen::MatrixXd& H = lin.H;
+  const Eigen::VectorXd& g = lin.g;
 
   // Schur complement (header), then H* = V S V^T -> J0 = S^1/2 V^T, r0 = S^-1/2 V^T g*.
   const int n = total - m;
@@ -200,12 +229,10 @@ std::unique_ptr<MarginalizationPrior> Marginalizer::marginalize() const {
     r0(k) = v.dot(gs) / s;
   }
 
-  std::vector<BlockKind> kinds;
-  std::vector<int> sizes;
-  for (double* b : kept) {
-    kinds.push_back(info[b].kind);
-    sizes.push_back(info[b].size);
-  }
+  const std::size_t nm = marginalized_.size();
+  std::vector<double*> kept(lin.blocks.begin() + static_cast<long>(nm), lin.blocks.end());
+  std::vector<BlockKind> kinds(lin.kinds.begin() + static_cast<long>(nm), lin.kinds.end());
+  std::vector<int> sizes(lin.sizes.begin() + static_cast<long>(nm), lin.sizes.end());
   return std::make_unique<MarginalizationPrior>(kept, std::move(kinds), std::move(sizes), std::move(J0),
                                                 std::move(r0));
 }

@@ -25,29 +25,9 @@ void PreintegrationConfig::validate() const {
 
 namespace {
 
-bool finite(const ImuSample& s) { return s.gyro_B.allFinite() && s.accel_B.allFinite(); }
-
-// Linear interpolation of two samples at stamp t (a.stamp_ns <= t <= b.stamp_ns).
-ImuSample interpolate(const ImuSample& a, const ImuSample& b, std::int64_t t) {
-  if (t == a.stamp_ns) return a;
-  if (t == b.stamp_ns) return b;
-  const double alpha = static_cast<double>(t - a.stamp_ns) / static_cast<double>(b.stamp_ns - a.stamp_ns);
-  return {t, (1.0 - alpha) * a.gyro_B + alpha * b.gyro_B, (1.0 - alpha) * a.accel_B + alpha * b.accel_B};
-}
-
 std::string stamp(std::int64_t t) { return std::to_string(t) + " ns"; }
 
 }  // namespace
-
-std::span<const ImuSample> covering_samples(std::span<const ImuSample> sorted, std::int64_t t_i_ns,
-                                            std::int64_t t_j_ns) {
-  const auto by_stamp = [](const ImuSample& s, std::int64_t t) { return s.stamp_ns < t; };
-  auto first = std::lower_bound(sorted.begin(), sorted.end(), t_i_ns, by_stamp);  // first stamp >= t_i
-  if (first != sorted.begin() && (first == sorted.end() || first->stamp_ns > t_i_ns)) --first;
-  auto last = std::lower_bound(first, sorted.end(), t_j_ns, by_stamp);  // first stamp >= t_j
-  if (last != sorted.end()) ++last;
-  return sorted.subspan(static_cast<std::size_t>(first - sorted.begin()), static_cast<std::size_t>(last - first));
-}
 
 Preintegration::Preintegration(const PreintegrationConfig& config, const ImuBias& linearization_bias,
                                std::span<const ImuSample> samples, std::int64_t t_i_ns, std::int64_t t_j_ns)
@@ -57,24 +37,9 @@ Preintegration::Preintegration(const PreintegrationConfig& config, const ImuBias
     throw InputError("preintegration: keyframe stamps must increase (t_i " + stamp(t_i_ns) + ", t_j " + stamp(t_j_ns) +
                      ")");
   }
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    if (!finite(samples[k])) throw InputError("IMU sample at " + stamp(samples[k].stamp_ns) + " is not finite");
-    if (k > 0 && samples[k].stamp_ns <= samples[k - 1].stamp_ns) {
-      throw InputError("IMU timestamps do not increase at " + stamp(samples[k].stamp_ns));
-    }
-  }
-  if (samples.empty() || samples.front().stamp_ns > t_i_ns || samples.back().stamp_ns < t_j_ns) {
-    throw InputError("IMU samples do not cover the keyframe interval [" + stamp(t_i_ns) + ", " + stamp(t_j_ns) + "]");
-  }
-  // Nodes: interpolated sample at t_i, every sample strictly inside (t_i, t_j), interpolated sample at t_j.
-  std::size_t k = 0;
-  while (samples[k + 1].stamp_ns <= t_i_ns && k + 2 < samples.size()) ++k;  // samples[k] <= t_i < samples[k+1]
-  nodes_.push_back(samples[k].stamp_ns == t_i_ns ? samples[k] : interpolate(samples[k], samples[k + 1], t_i_ns));
-  for (++k; k < samples.size() && samples[k].stamp_ns < t_j_ns; ++k) {
-    if (samples[k].stamp_ns > t_i_ns) nodes_.push_back(samples[k]);
-  }
-  // Now samples[k] is the first sample at or after t_j (it exists because the samples cover t_j).
-  nodes_.push_back(interpolate(samples[k - 1], samples[k], t_j_ns));
+  // Nodes: interpolated sample at t_i, every sample strictly inside (t_i, t_j), interpolated sample at t_j; the
+  // samples are validated there (order, finite values, coverage).
+  nodes_ = imu::integration_nodes(samples, t_i_ns, t_j_ns);
   propagate();
 }
 

@@ -16,22 +16,15 @@
 namespace twinslam::estimator {
 namespace {
 
-constexpr double kRadToDeg = 57.29577951308232;
-
-WindowFrame* find_frame(WindowState& s, std::int64_t id) {
-  for (auto& f : s.frames) {
-    if (f->id == id) return f.get();
-  }
-  return nullptr;
+// Reprojection error [px] of one reprojection term after the solve, and whether the point is in front of the camera.
+std::pair<double, bool> reprojection_error_px(WindowState& s, const ResidualTerm& t) {
+  const WindowLandmark& lm = s.landmarks.at(t.landmark);
+  const WindowFrame* anchor = find_frame(s, lm.lm.anchor_keyframe);
+  const WindowFrame* frame = find_frame(s, t.frame);
+  const auto& factor = static_cast<const ReprojectionFactor&>(*t.cost);
+  return {factor.angular_error(anchor->pose.data(), frame->pose.data(), lm.rho) * s.config.focal_px,
+          factor.in_front(anchor->pose.data(), frame->pose.data(), lm.rho)};
 }
-
-// One visual residual of the problem, kept to check it after the solve.
-struct VisualTerm {
-  std::int64_t landmark;
-  WindowFrame* anchor;
-  WindowFrame* frame;
-  std::unique_ptr<ReprojectionFactor> factor;
-};
 
 }  // namespace
 
@@ -102,55 +95,18 @@ SolveSummary solve_window(WindowState& s) {
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   std::unique_ptr<ceres::Manifold> manifold(new_pose_manifold());
-  std::unique_ptr<ceres::LossFunction> loss(new_reprojection_loss(c.reprojection_noise()));
-  std::vector<std::unique_ptr<ceres::CostFunction>> owned;
-  const Eigen::Vector3d g_L(0, 0, -c.gravity_mps2);
-
-  WindowBlocks blocks;
-  for (std::size_t k = 0; k < s.frames.size(); ++k) {
-    WindowFrame& f = *s.frames[k];
-    problem.AddParameterBlock(f.pose.data(), kPoseSize, manifold.get());
-    problem.AddParameterBlock(f.speed_bias.data(), kSpeedBiasSize);
-    if (k > 0 && f.imu_from_prev) {
-      WindowFrame& p = *s.frames[k - 1];
-      owned.emplace_back(new ImuFactor(f.imu_from_prev, g_L));
-      problem.AddResidualBlock(owned.back().get(), nullptr, p.pose.data(), p.speed_bias.data(), f.pose.data(),
-                               f.speed_bias.data());
-    }
-    if (f.stationary) {
-      owned.emplace_back(new_zero_velocity_factor(c.zero_velocity_sigma_mps));
-      problem.AddResidualBlock(owned.back().get(), nullptr, f.speed_bias.data());
-    }
-    blocks.stamps_ns.push_back(f.stamp_ns);
-    blocks.pose.push_back(f.pose.data());
-    blocks.speed_bias.push_back(f.speed_bias.data());
-    blocks.is_keyframe.push_back(f.keyframe);
+  // Frame blocks first, in window order (the Schur ordering then matches issue 5's problem exactly).
+  for (auto& f : s.frames) {
+    problem.AddParameterBlock(f->pose.data(), kPoseSize, manifold.get());
+    problem.AddParameterBlock(f->speed_bias.data(), kSpeedBiasSize);
   }
-  if (s.first_prior_active) {
-    WindowFrame& f0 = *s.frames.front();
-    owned.emplace_back(new_pose_prior(s.first_prior_state, s.first_prior_sigmas));
-    problem.AddResidualBlock(owned.back().get(), nullptr, f0.pose.data());
-    owned.emplace_back(new_speed_bias_prior(s.first_prior_state, s.first_prior_sigmas));
-    problem.AddResidualBlock(owned.back().get(), nullptr, f0.speed_bias.data());
-  }
-  if (s.prior) problem.AddResidualBlock(s.prior.get(), nullptr, s.prior->parameter_blocks());
-
-  std::vector<VisualTerm> terms;
-  const double sqrt_info = c.reprojection_noise().sqrt_information();
+  const std::vector<ResidualTerm> terms = build_window_terms(s);
+  add_to_problem(terms, problem);
   for (auto& [id, lm] : s.landmarks) {
-    WindowFrame* anchor = find_frame(s, lm.lm.anchor_keyframe);
-    if (anchor == nullptr) continue;  // cannot happen: marginalization re-anchors first
-    for (auto& f : s.frames) {
-      if (f.get() == anchor) continue;
-      const auto it = f->bearings.find(id);
-      if (it == f->bearings.end()) continue;
-      auto factor = std::make_unique<ReprojectionFactor>(lm.lm.f_Ca, it->second, c.T_BC, sqrt_info);
-      problem.AddResidualBlock(factor.get(), loss.get(), anchor->pose.data(), f->pose.data(), &lm.rho);
-      terms.push_back({id, anchor, f.get(), std::move(factor)});
-    }
     if (problem.HasParameterBlock(&lm.rho)) problem.SetParameterLowerBound(&lm.rho, 0, 1e-6);
   }
-  for (const auto& provider : s.providers) provider->add_factors(problem, blocks);
+  // T_WL is in the problem only through terms acting on it: from then on T_WB is in W.
+  if (problem.HasParameterBlock(s.T_WL.data())) s.world_aligned = true;
 
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_SCHUR;
@@ -169,11 +125,11 @@ SolveSummary solve_window(WindowState& s) {
   std::vector<double> errors;
   std::map<std::int64_t, std::pair<double, int>> per_landmark;  // sum of errors, count
   for (const auto& t : terms) {
-    const WindowLandmark& lm = s.landmarks.at(t.landmark);
-    const double err = t.factor->angular_error(t.anchor->pose.data(), t.frame->pose.data(), lm.rho) * c.focal_px;
+    if (t.kind != TermKind::kReprojection) continue;
+    const auto [err, in_front] = reprojection_error_px(s, t);
     errors.push_back(err);
-    if (err > c.outlier_threshold_px || !t.factor->in_front(t.anchor->pose.data(), t.frame->pose.data(), lm.rho)) {
-      t.frame->bearings.erase(t.landmark);
+    if (err > c.outlier_threshold_px || !in_front) {
+      find_frame(s, t.frame)->bearings.erase(t.landmark);
       ++out.outliers_removed;
     } else {
       auto& acc = per_landmark[t.landmark];

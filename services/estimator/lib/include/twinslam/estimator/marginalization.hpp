@@ -67,6 +67,21 @@ class MarginalizationPrior final : public ceres::CostFunction {
   Eigen::VectorXd r0_;
 };
 
+// The factors of a Marginalizer linearized at the current block values: H = sum J^T J, g = sum J^T r in stacked tangent
+// coordinates (pose blocks [dp, dtheta], translation first; others Euclidean), robust losses applied (Triggs).
+// Blocks: the marginalized ones first (in marginalize_block() order), then the others in order of first appearance.
+struct DenseLinearization {
+  std::vector<double*> blocks;
+  std::vector<BlockKind> kinds;
+  std::vector<int> sizes;     // ambient
+  std::vector<int> tangents;  // tangent
+  std::vector<int> offsets;   // tangent offset in H
+  int marginalized_tangent = 0;  // H's leading rows/columns that belong to marginalized blocks
+  Eigen::MatrixXd H;
+  Eigen::VectorXd g;
+  int offset_of(const double* block) const;  // -1 if the block is in no factor
+};
+
 // Collects the factors connected to the blocks to marginalize and builds the prior.
 // Usage per window slide: add every factor touching a marginalized block (IMU factors, reprojection factors of the
 // landmarks being dropped, the previous prior), mark the blocks, call marginalize() BEFORE removing those factors from
@@ -84,10 +99,22 @@ class Marginalizer {
   // Kinds default from the size (kPoseSize -> kPose, otherwise kEuclidean); override here.
   void set_block_kind(double* block, BlockKind kind);
 
+  // Evaluates the factors at the current block values (see DenseLinearization). Throws like marginalize(), except
+  // that here no block needs to remain (the window's full Hessian for covariances).
+  DenseLinearization linearize() const;
   // Evaluates the factors at the current block values and returns the prior on the remaining blocks, or nullptr when
   // it carries no information (every direction truncated, e.g. only relative factors). Throws std::logic_error if a
   // marked block is in no factor or no block remains, std::runtime_error if a factor fails to evaluate.
   std::unique_ptr<MarginalizationPrior> marginalize() const;
+
+  // Where a block sits in a linearization (used by linearize()'s helpers).
+  struct BlockInfo {
+    int size = 0;      // ambient
+    int tangent = 0;   // tangent
+    int offset = -1;   // in the stacked tangent vector [x_m, x_r]
+    BlockKind kind = BlockKind::kEuclidean;
+    bool marginalized = false;
+  };
 
  private:
   struct Factor {
@@ -95,6 +122,9 @@ class Marginalizer {
     const ceres::LossFunction* loss;
     std::vector<double*> blocks;
   };
+  // Orders the blocks into `lin` (sizes H and g); returns the per-block layout the linearization scatters into.
+  std::unordered_map<double*, BlockInfo> layout(DenseLinearization& lin) const;
+
   MarginalizationConfig config_;
   std::vector<Factor> factors_;
   std::vector<double*> marginalized_;

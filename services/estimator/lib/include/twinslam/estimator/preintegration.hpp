@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "twinslam/estimator/imu_types.hpp"
+#include "twinslam/imu/imu_samples.hpp"
 
 namespace twinslam::estimator {
 
@@ -51,11 +52,8 @@ struct PreintegrationBiasJacobians {
   Eigen::Matrix3d dp_dba = Eigen::Matrix3d::Zero();
 };
 
-// The part of a time-sorted IMU buffer that Preintegration needs for [t_i_ns, t_j_ns]: from the last sample at or
-// before t_i_ns to the first sample at or after t_j_ns (clipped to the buffer, so coverage is still checked by the
-// constructor). Binary search, so a service can keep one long buffer and pass the slice.
-std::span<const ImuSample> covering_samples(std::span<const ImuSample> sorted, std::int64_t t_i_ns,
-                                            std::int64_t t_j_ns);
+// The slice of a long IMU buffer that Preintegration needs (common/imu).
+using imu::covering_samples;
 
 class Preintegration {
  public:

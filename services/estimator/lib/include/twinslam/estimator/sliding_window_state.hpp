@@ -12,7 +12,9 @@
 #include "twinslam/estimator/motion_init.hpp"
 #include "twinslam/estimator/preintegration.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
+#include "twinslam/estimator/residual_term.hpp"
 #include "twinslam/estimator/state_prior.hpp"
+#include "twinslam/estimator/world_alignment.hpp"
 
 namespace twinslam::estimator {
 
@@ -40,7 +42,7 @@ struct WindowState {
   std::vector<ImuSample> imu;                 // sorted; trimmed to what the window needs
   std::deque<std::unique_ptr<WindowFrame>> frames;  // oldest first; only the last may be a non-keyframe
   std::map<std::int64_t, WindowLandmark> landmarks;  // triangulated, by feature id
-  std::unique_ptr<MarginalizationPrior> prior;
+  std::shared_ptr<MarginalizationPrior> prior;  // shared with the term list that feeds it to Ceres
   bool first_prior_active = false;            // frames.front() still carries the initial-state prior
   ImuState first_prior_state;
   StatePriorSigmas first_prior_sigmas;        // of the initialization that started the window
@@ -54,6 +56,12 @@ struct WindowState {
   std::int64_t next_frame_id = 0;
   std::optional<LocalMapEstimate> local_map;
   std::vector<std::shared_ptr<WindowFactorProvider>> providers;
+
+  // World alignment (world_alignment.hpp): the block, its prior from set_world_alignment(), and whether any term has
+  // acted on it yet (then T_WB = T_WL T_LB is in W and the odometry says ODOM_ALIGNED).
+  std::array<double, kWorldAlignmentSize> T_WL{};
+  std::optional<ResidualTerm> world_prior;
+  bool world_aligned = false;
 };
 
 // Result of one window solve (window_solver.cpp).
@@ -64,6 +72,21 @@ struct SolveSummary {
 
 // Prior sigmas of the first keyframe after a static initialization (config's init_* values).
 StatePriorSigmas static_init_prior_sigmas(const SlidingWindowConfig& c);
+// The window's frame with this id, or null.
+WindowFrame* find_frame(WindowState& s, std::int64_t id);
+// The state blocks handed to providers (window_factor_provider.hpp).
+WindowBlocks window_blocks(WindowState& s);
+// The one list of residual terms of the window as it is now (window_terms.cpp): what the solve minimizes and what
+// the marginalization linearizes.
+std::vector<ResidualTerm> build_window_terms(WindowState& s);
+// The terms and blocks that marginalizing the oldest keyframe eliminates (window_marginalization.cpp): every term
+// acting on its pose or speed/bias block, the previous marginalization prior (replaced by the new one), and as blocks
+// the keyframe's two blocks plus the inverse depths anchored in it.
+struct MarginalizationSelection {
+  std::vector<ResidualTerm> terms;
+  std::vector<double*> blocks;
+};
+MarginalizationSelection select_for_marginalization(WindowState& s, const std::vector<ResidualTerm>& terms);
 // Builds the problem from `s`, solves it, syncs landmarks, removes outlier observations and bad landmarks.
 SolveSummary solve_window(WindowState& s);
 // Triangulates features seen in at least config.min_observations window frames that are not landmarks yet.

@@ -6,9 +6,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include "twinslam/core/error.hpp"
-#include "twinslam/estimator/imu_types.hpp"
+#include "twinslam/imu/imu_types.hpp"
 
-namespace twinslam::estimator {
+namespace twinslam::imu {
 
 void ImuNoise::validate() const {
   const std::pair<const char*, double> fields[] = {
@@ -69,4 +69,4 @@ ImuNoise load_imu_noise(const std::filesystem::path& sensor_yaml) {
   return noise;
 }
 
-}  // namespace twinslam::estimator
+}  // namespace twinslam::imu

@@ -1,0 +1,40 @@
+#include "twinslam/geometry/information_order.hpp"
+
+namespace twinslam::geometry {
+namespace {
+
+// P maps a rotation-first vector to a translation-first one: [dp; dtheta] = P [dtheta; dp].
+Matrix6d swap_blocks() {
+  Matrix6d P = Matrix6d::Zero();
+  P.block<3, 3>(0, 3).setIdentity();
+  P.block<3, 3>(3, 0).setIdentity();
+  return P;
+}
+
+}  // namespace
+
+Matrix6d rotation_first_to_translation_first(const Matrix6d& m_rt) {
+  const Matrix6d P = swap_blocks();
+  return P * m_rt * P.transpose();
+}
+
+Matrix6d translation_first_to_rotation_first(const Matrix6d& m_tr) {
+  const Matrix6d P = swap_blocks();  // P^-1 = P^T = P
+  return P.transpose() * m_tr * P;
+}
+
+Eigen::Matrix<double, 6, 1> rotation_first_to_translation_first(const Eigen::Matrix<double, 6, 1>& v_rt) {
+  return swap_blocks() * v_rt;
+}
+
+Matrix6d from_row_major(const std::array<double, 36>& a) {
+  return Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(a.data());
+}
+
+std::array<double, 36> to_row_major(const Matrix6d& m) {
+  std::array<double, 36> a{};
+  Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(a.data()) = m;
+  return a;
+}
+
+}  // namespace twinslam::geometry

@@ -1,0 +1,114 @@
+// The window's one list of residual terms (residual_term.hpp): IMU, zero-velocity, the initial and marginalization
+// priors, bearing reprojections, the world-alignment prior and every provider's terms. The solve and the
+// marginalization both build it here, in this order (the order of the Ceres residual blocks, kept from issue 5 so VIO
+// results are unchanged).
+#include <ceres/cost_function.h>
+#include <ceres/loss_function.h>
+
+#include "twinslam/estimator/imu_factor.hpp"
+#include "twinslam/estimator/reprojection_factor.hpp"
+#include "twinslam/estimator/sliding_window_state.hpp"
+#include "twinslam/estimator/state_prior.hpp"
+
+namespace twinslam::estimator {
+namespace {
+
+ResidualTerm term(TermKind kind, std::string purpose, ceres::CostFunction* cost, std::vector<double*> blocks) {
+  return make_term(kind, std::move(purpose), std::unique_ptr<ceres::CostFunction>(cost), nullptr, std::move(blocks));
+}
+
+std::string frame_name(const WindowFrame& f) { return "frame " + std::to_string(f.id); }
+
+void add_inertial_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
+  const Eigen::Vector3d g_L(0, 0, -s.config.gravity_mps2);
+  for (std::size_t k = 0; k < s.frames.size(); ++k) {
+    WindowFrame& f = *s.frames[k];
+    if (k > 0 && f.imu_from_prev) {
+      WindowFrame& p = *s.frames[k - 1];
+      terms.push_back(term(TermKind::kImu, "imu " + frame_name(p) + " -> " + std::to_string(f.id),
+                           new ImuFactor(f.imu_from_prev, g_L),
+                           {p.pose.data(), p.speed_bias.data(), f.pose.data(), f.speed_bias.data()}));
+    }
+    if (f.stationary) {
+      terms.push_back(term(TermKind::kZeroVelocity, "zero velocity " + frame_name(f),
+                           new_zero_velocity_factor(s.config.zero_velocity_sigma_mps), {f.speed_bias.data()}));
+    }
+  }
+}
+
+void add_prior_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
+  if (s.first_prior_active) {
+    WindowFrame& f0 = *s.frames.front();
+    terms.push_back(term(TermKind::kInitialPrior, "initial pose " + frame_name(f0),
+                         new_pose_prior(s.first_prior_state, s.first_prior_sigmas), {f0.pose.data()}));
+    terms.push_back(term(TermKind::kInitialPrior, "initial speed/bias " + frame_name(f0),
+                         new_speed_bias_prior(s.first_prior_state, s.first_prior_sigmas), {f0.speed_bias.data()}));
+  }
+  if (s.prior) {
+    ResidualTerm t;
+    t.kind = TermKind::kMarginalizationPrior;
+    t.purpose = "marginalization prior";
+    t.cost = s.prior;
+    t.blocks = s.prior->parameter_blocks();
+    terms.push_back(std::move(t));
+  }
+}
+
+void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
+  const double sqrt_info = s.config.reprojection_noise().sqrt_information();
+  const std::shared_ptr<ceres::LossFunction> loss(new_reprojection_loss(s.config.reprojection_noise()));
+  for (auto& [id, lm] : s.landmarks) {
+    WindowFrame* anchor = find_frame(s, lm.lm.anchor_keyframe);
+    if (anchor == nullptr) continue;  // cannot happen: marginalization re-anchors first
+    for (auto& f : s.frames) {
+      if (f.get() == anchor) continue;
+      const auto it = f->bearings.find(id);
+      if (it == f->bearings.end()) continue;
+      ResidualTerm t;
+      t.kind = TermKind::kReprojection;
+      t.cost = std::make_shared<ReprojectionFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
+      t.loss = loss;
+      t.blocks = {anchor->pose.data(), f->pose.data(), &lm.rho};
+      t.landmark = id;
+      t.frame = f->id;
+      terms.push_back(std::move(t));
+    }
+  }
+}
+
+}  // namespace
+
+WindowFrame* find_frame(WindowState& s, std::int64_t id) {
+  for (auto& f : s.frames) {
+    if (f->id == id) return f.get();
+  }
+  return nullptr;
+}
+
+WindowBlocks window_blocks(WindowState& s) {
+  WindowBlocks blocks;
+  for (auto& f : s.frames) {
+    blocks.stamps_ns.push_back(f->stamp_ns);
+    blocks.pose.push_back(f->pose.data());
+    blocks.speed_bias.push_back(f->speed_bias.data());
+    blocks.is_keyframe.push_back(f->keyframe);
+  }
+  blocks.T_WL = s.T_WL.data();
+  return blocks;
+}
+
+std::vector<ResidualTerm> build_window_terms(WindowState& s) {
+  std::vector<ResidualTerm> terms;
+  terms.reserve(s.frames.size() * 2 + s.landmarks.size() * s.frames.size() / 2 + 8);
+  add_inertial_terms(s, terms);
+  add_prior_terms(s, terms);
+  add_visual_terms(s, terms);
+  if (s.world_prior) terms.push_back(*s.world_prior);
+  if (!s.providers.empty()) {
+    const WindowBlocks blocks = window_blocks(s);
+    for (const auto& provider : s.providers) provider->add_terms(blocks, terms);
+  }
+  return terms;
+}
+
+}  // namespace twinslam::estimator

@@ -1,0 +1,46 @@
+#include "modes.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "twinslam/core/error.hpp"
+
+namespace twinslam::cli {
+namespace {
+
+// Where each missing mode is being built, for the refusal message.
+const std::map<std::string, std::string>& missing() {
+  static const std::map<std::string, std::string> m{
+      {"vio-gnss", "tightly coupled GNSS fusion, issue 13"},
+      {"vio-gnss-loose", "loosely coupled GNSS + VIO fusion, issue 13"},
+      {"vio-twin", "digital-twin registration fusion, issue 12"},
+      {"vio-twin-gnss", "digital-twin registration and GNSS fusion, issues 12 and 13"},
+  };
+  return m;
+}
+
+}  // namespace
+
+const std::vector<std::string>& all_modes() {
+  static const std::vector<std::string> modes{"vio", "vio-gnss", "vio-gnss-loose", "vio-twin", "vio-twin-gnss"};
+  return modes;
+}
+
+bool mode_implemented(const std::string& mode) { return mode == "vio"; }
+
+std::string implemented_modes_text() {
+  std::string out;
+  for (const auto& m : all_modes()) {
+    if (mode_implemented(m)) out += (out.empty() ? "" : ", ") + m;
+  }
+  return out;
+}
+
+void require_implemented_mode(const std::string& mode) {
+  if (mode_implemented(mode)) return;
+  const auto it = missing().find(mode);
+  const std::string why = it == missing().end() ? "unknown mode" : "not implemented yet (" + it->second + ")";
+  throw UsageError("mode '" + mode + "': " + why + "; implemented: " + implemented_modes_text());
+}
+
+}  // namespace twinslam::cli
