@@ -1,9 +1,13 @@
 #include "estimator_node.hpp"
 
+#include <algorithm>
+#include <array>
+
 #include <spdlog/spdlog.h>
 
 #include "twinslam/core/error.hpp"
 #include "twinslam/dds/convert.hpp"
+#include "twinslam/geometry/information_order.hpp"
 
 namespace twinslam::estimator {
 namespace {
@@ -24,6 +28,10 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
     : node_(node),
       counters_(counters),
       estimator_(options.estimator),
+      fusion_(estimator_, options.fusion, options.initial_pose),
+      enu_(options.origin ? std::make_unique<twin::EnuFrame>(*options.origin) : nullptr),
+      await_registration_(options.await_registration),
+      registration_wait_(options.registration_wait),
       odometry_(node.writer<msg::Odometry>(dds::topics::kOdometry)),
       local_map_(node.writer<msg::LocalMap>(dds::topics::kLocalMap)),
       ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)),
@@ -54,12 +62,21 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
 }
 
 void EstimatorNode::apply(const GlobalInput& input) {
-  // Counted in stamp order on the worker thread; fused by the registration (issue 12) and GNSS (issue 13) work.
-  if (std::holds_alternative<msg::Registration>(input)) {
+  // On the worker thread, in stamp order relative to the frames.
+  if (const auto* r = std::get_if<msg::Registration>(&input)) {
     counters_.add("registration_in");
-  } else {
-    counters_.add("gnss_in");
+    std::array<double, 36> info{};
+    std::copy(r->information().begin(), r->information().end(), info.begin());
+    fusion_.on_registration(r->keyframe_stamp_ns(), r->status() == msg::REG_ACCEPTED, dds::from_msg(r->correction_W()),
+                            geometry::from_row_major(info));  // (rotation, translation) as on the wire
+    return;
   }
+  const auto& g = std::get<msg::GnssFix>(input);
+  counters_.add("gnss_in");
+  if (!enu_) return;  // no origin: W is unknown, the fix cannot be used
+  const Eigen::Vector3d p_W = enu_->from_lla(g.latitude_deg(), g.longitude_deg(), g.altitude_m());
+  const Eigen::Matrix3d cov = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(g.covariance_enu_m2().data());
+  if (p_W.allFinite() && cov.allFinite()) fusion_.on_gnss(g.stamp_ns(), p_W, cov);
 }
 
 void EstimatorNode::handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu,
@@ -85,6 +102,7 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
   }
   try {
     const FrameEstimate e = estimator_.add_frame(m.stamp_ns(), features);
+    fusion_.after_frame(e, estimator_.local_map());
     msg::Odometry odom;
     odom.vehicle_id(m.vehicle_id());
     odom.stamp_ns(m.stamp_ns());
@@ -123,6 +141,7 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
       }
       local_map_.publish(lm);
       counters_.add("local_maps_out");
+      if (await_registration_) worker_.expect_side(map->keyframe_stamp_ns, registration_wait_);
     }
   } catch (const InputError& e) {
     counters_.add("frames_rejected");

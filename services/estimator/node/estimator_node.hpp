@@ -4,22 +4,33 @@
 // SlidingWindowEstimator (twinslam_estimator_core). A frame is processed once the IMU has reached its stamp, or after
 // `imu_wait` if the IMU stream ends or lags (the rule of the tracking service): deterministic whenever the IMU covers
 // the frame, never stuck at the end of a dataset. Global inputs reach the worker thread through the same
-// SensorWorker, in sensor-time order relative to the frames (sensor_worker.hpp); until their fusion lands (map
-// registration: issue 12, GNSS: issue 13) they are only counted.
+// SensorWorker, in sensor-time order relative to the frames (sensor_worker.hpp), and go to GlobalFusion
+// (global_fusion.hpp): GNSS for the initial alignment T_WL (eq. 11), accepted registrations as map factors (eq. 7).
 #include <chrono>
+#include <memory>
+#include <optional>
 #include <variant>
 #include <vector>
 
 #include "twinslam/core/sensor_worker.hpp"
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
+#include "twinslam/estimator/global_fusion.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
+#include "twinslam/twin/geo.hpp"
 
 namespace twinslam::estimator {
 
 struct EstimatorNodeOptions {
   SlidingWindowConfig estimator;                  // T_BC, focal_px and imu filled from --camera / --imu
   std::chrono::milliseconds imu_wait{100};        // how long a frame may wait for IMU past its stamp
+  GlobalFusionConfig fusion;                      // what to do with GNSS and registrations (off: plain VIO)
+  std::optional<InitialPose> initial_pose;        // --initial-pose: T_WL from a user-given start pose
+  std::optional<twin::GeoOrigin> origin;          // W's origin (lat, lon, alt): needed to use GNSS fixes
+  // Lockstep replay with registration fusion: each LocalMap holds the next frame until the registration answering
+  // it arrives (or this long passes), so when a registration is fused does not depend on the edge's speed.
+  bool await_registration = false;
+  std::chrono::milliseconds registration_wait{10000};
 };
 
 // A global measurement on its way to the worker thread, keyed by its sensor stamp (a Registration by the keyframe
@@ -38,6 +49,10 @@ class EstimatorNode {
   dds::Node& node_;
   dds::Counters& counters_;
   SlidingWindowEstimator estimator_;  // used by the worker thread only
+  GlobalFusion fusion_;               // likewise
+  std::unique_ptr<twin::EnuFrame> enu_;  // lat/lon/alt -> W (null without an origin)
+  bool await_registration_;
+  std::chrono::milliseconds registration_wait_;
   dds::Writer<msg::Odometry> odometry_;
   dds::Writer<msg::LocalMap> local_map_;
   dds::Writer<msg::FrameAck> ack_;

@@ -90,9 +90,23 @@ void Renderer::render_rows(const Eigen::Isometry3d& T_WC, const CameraModel& cam
   auto* scene = static_cast<RTCScene>(scene_.rtc_scene());
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
+  // Every lane holds a well-formed ray, active or not: Embree's 8-wide (AVX2) coherent kernels assert on the lanes of
+  // a 16-ray packet beyond the active mask (a machine without AVX-512 aborted in rtcOccluded16 on uninitialized lanes).
+  const auto reset_lanes = [](auto& ray) {
+    for (int i = 0; i < 16; ++i) {
+      ray.org_x[i] = ray.org_y[i] = ray.org_z[i] = 0.0f;
+      ray.dir_x[i] = ray.dir_y[i] = 0.0f;
+      ray.dir_z[i] = 1.0f;
+      ray.tnear[i] = ray.tfar[i] = ray.time[i] = 0.0f;
+      ray.mask[i] = 0xFFFFFFFF;
+      ray.id[i] = static_cast<unsigned>(i);
+      ray.flags[i] = 0;
+    }
+  };
   for (int v0 = kTile * (*next_tile_row)++; v0 < h; v0 = kTile * (*next_tile_row)++) {
     for (int u0 = 0; u0 < w; u0 += kTile) {
       bool any = false;
+      reset_lanes(rh.ray);
       for (int i = 0; i < 16; ++i) {
         const int u = u0 + i % kTile, v = v0 + i / kTile;
         valid[i] = 0;
@@ -128,6 +142,7 @@ void Renderer::render_rows(const Eigen::Isometry3d& T_WC, const CameraModel& cam
       double sun_cos[16];
       alignas(64) int lit[16];
       alignas(64) RTCRay16 shadow;
+      reset_lanes(shadow);
       bool any_lit = false;
       for (int i = 0; i < 16; ++i) {
         lit[i] = 0;

@@ -1,0 +1,78 @@
+#pragma once
+// What the estimator does with global inputs (paper Sec. III-C/D), free of DDS: the node converts messages and calls
+// this in sensor-time order (sensor_worker.hpp).
+//  - GNSS fixes (in W) pair with the estimated positions to find the initial alignment T_WL (eq. 11, WorldAligner);
+//    once its heading sigma is small enough, set_world_alignment() starts the window's T_WL from it. After a long
+//    registration outage (drift grows) the alignment is found again from recent fixes (paper Sec. V).
+//  - Without GNSS, an initial pose given by the user ("E N U YAW", the paper's "set manually") starts it.
+//  - Accepted map registrations become MapRegistration terms (map_registration_provider.hpp) on their keyframe,
+//    read against the keyframe pose and T_WL that were published with the LocalMap they answer.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "twinslam/estimator/map_registration_provider.hpp"
+#include "twinslam/estimator/sliding_window_estimator.hpp"
+#include "twinslam/estimator/world_aligner.hpp"
+
+namespace twinslam::estimator {
+
+struct GlobalFusionConfig {
+  bool fuse_registrations = false;      // twin modes
+  bool align_from_gnss = false;         // use GNSS fixes for the initial alignment (and re-alignment)
+  // Re-align from GNSS when no registration was accepted for this long after alignment (0: never) [s].
+  double realign_after_s = 30.0;
+  double initial_pose_position_sigma_m = 5.0;  // prior of a user-given initial pose [m]
+  double initial_pose_yaw_sigma_deg = 5.0;     // [deg]
+  double gnss_alignment_sigma_scale = 1.0;     // the T_WL prior's sigmas = the aligner's sigmas times this [1]
+  WorldAlignerConfig aligner;
+  MapRegistrationProviderConfig registration;
+  void validate() const;  // throws twinslam::InputError naming the field
+};
+
+// An initial pose of body B in W: position E, N, U [m] and yaw [deg] (heading of B's x axis from East, CCW).
+struct InitialPose {
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
+  double yaw_deg = 0.0;
+};
+
+struct GlobalFusionCounts {
+  unsigned long long gnss_in = 0, gnss_paired = 0, alignments = 0, registrations_in = 0, registrations_accepted = 0,
+                     registrations_unknown_keyframe = 0;
+};
+
+class GlobalFusion {
+ public:
+  GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusionConfig& config,
+               std::optional<InitialPose> initial_pose = std::nullopt);
+
+  // A GNSS fix at `stamp_ns`: p_W with covariance (ENU) [m, m^2].
+  void on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, const Eigen::Matrix3d& cov_W);
+  // A registration answering the keyframe at `keyframe_stamp_ns` (only accepted ones are fused). correction_W: dT of
+  // eq. (3) as a transform of W; information: 6x6 (rotation, translation) about the keyframe position.
+  void on_registration(std::int64_t keyframe_stamp_ns, bool accepted, const Eigen::Isometry3d& correction_W,
+                       const Eigen::Matrix<double, 6, 6>& information);
+  // After each frame: remembers the estimate (GNSS pairing) and, for a keyframe, its published LocalMap pose.
+  void after_frame(const FrameEstimate& estimate, const std::optional<LocalMapEstimate>& local_map);
+
+  const GlobalFusionCounts& counts() const { return counts_; }
+  const MapRegistrationCounts& registration_counts() const { return provider_->counts(); }
+  std::optional<WorldAlignment4Dof> last_alignment() const { return last_alignment_; }
+
+ private:
+  void try_align(std::int64_t stamp_ns);
+
+  SlidingWindowEstimator& estimator_;
+  GlobalFusionConfig config_;
+  std::optional<InitialPose> initial_pose_;
+  std::shared_ptr<MapRegistrationProvider> provider_;
+  WorldAligner aligner_;
+  std::optional<WorldAlignment4Dof> last_alignment_;
+  std::optional<FrameEstimate> last_frame_;
+  std::map<std::int64_t, std::pair<Eigen::Isometry3d, Eigen::Isometry3d>> published_;  // stamp -> (T_LB, T_WL)
+  std::int64_t last_accepted_ns_ = -1;  // last accepted registration (or alignment) [sensor time]
+  bool aligned_ = false;
+};
+
+}  // namespace twinslam::estimator

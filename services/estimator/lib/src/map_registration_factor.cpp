@@ -1,0 +1,70 @@
+#include "twinslam/estimator/map_registration_factor.hpp"
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/rotation.h>
+#include <Eigen/Eigenvalues>
+
+#include "twinslam/estimator/imu_state.hpp"
+#include "twinslam/estimator/world_alignment.hpp"
+
+namespace twinslam::estimator {
+namespace {
+
+struct MapRegistrationResidual {
+  Eigen::Quaterniond q_meas_inv;  // R_WB_meas^T
+  Eigen::Vector3d p_meas;
+  Eigen::Matrix<double, 6, 6> S;
+
+  template <class T>
+  bool operator()(const T* pose, const T* T_WL, T* r) const {
+    // R_WB(x) = Rz(yaw) R_LB, as quaternions (Eigen order in the pose block: x, y, z, w).
+    const Eigen::Quaternion<T> q_LB(pose[6], pose[3], pose[4], pose[5]);
+    const Eigen::Quaternion<T> q_z(Eigen::AngleAxis<T>(T_WL[3], Eigen::Matrix<T, 3, 1>::UnitZ()));
+    const Eigen::Quaternion<T> q_err = q_z * q_LB * q_meas_inv.cast<T>();
+    const T q_wxyz[4] = {q_err.w(), q_err.x(), q_err.y(), q_err.z()};
+    Eigen::Matrix<T, 6, 1> e;
+    ceres::QuaternionToAngleAxis(q_wxyz, e.data());  // Log, world frame (left error)
+    T p_W[3];
+    world_from_local(T_WL, pose, p_W);
+    for (int k = 0; k < 3; ++k) e[3 + k] = p_W[k] - T(p_meas[k]);
+    Eigen::Map<Eigen::Matrix<T, 6, 1>>(r) = S.cast<T>() * e;
+    return true;
+  }
+};
+
+}  // namespace
+
+Eigen::Isometry3d MapRegistration::measured_T_WB() const {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = dR_W * T_WB_estimate.linear();
+  T.translation() = T_WB_estimate.translation() + dp_W;
+  return T;
+}
+
+MapRegistration map_registration_from_correction(std::int64_t keyframe_stamp_ns, const Eigen::Isometry3d& T_WB_estimate,
+                                                 const Eigen::Isometry3d& dT_W,
+                                                 const Eigen::Matrix<double, 6, 6>& information) {
+  MapRegistration m;
+  m.keyframe_stamp_ns = keyframe_stamp_ns;
+  m.T_WB_estimate = T_WB_estimate;
+  m.dR_W = dT_W.linear();
+  const Eigen::Vector3d c = T_WB_estimate.translation();
+  m.dp_W = dT_W * c - c;
+  m.information = information;
+  return m;
+}
+
+Eigen::Matrix<double, 6, 6> information_square_root(const Eigen::Matrix<double, 6, 6>& H) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(0.5 * (H + H.transpose()));
+  const Eigen::Matrix<double, 6, 1> s = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return s.asDiagonal() * es.eigenvectors().transpose();
+}
+
+ceres::CostFunction* new_map_registration_factor(const MapRegistration& m) {
+  const Eigen::Isometry3d T = m.measured_T_WB();
+  auto* f = new MapRegistrationResidual{Eigen::Quaterniond(T.linear()).conjugate(), T.translation(),
+                                        information_square_root(m.information)};
+  return new ceres::AutoDiffCostFunction<MapRegistrationResidual, 6, kPoseSize, kWorldAlignmentSize>(f);
+}
+
+}  // namespace twinslam::estimator
