@@ -40,7 +40,7 @@ Matrix6d registration_hessian(const std::vector<Correspondence>& inliers) {
     A << k.a.cross(k.n), k.n;
     H.noalias() += A * A.transpose();
   }
-  return H;
+  return 0.5 * (H + H.transpose());  // Eigen's product kernel is not bit-symmetric; the factor must be
 }
 
 Information compute_information(const RegistrationConfig& config, const std::vector<Correspondence>& inliers,
@@ -69,7 +69,7 @@ Information compute_information(const RegistrationConfig& config, const std::vec
           Eigen::Vector3d::Constant(config.fixed_translation_information);
       break;
   }
-  info.information = 0.5 * (info.information + info.information.transpose());  // exactly symmetric
+  info.information = (0.5 * (info.information + info.information.transpose())).eval();  // exactly symmetric
   return info;
 }
 

@@ -34,20 +34,21 @@ void check_covariance(const Matrix6d& S) {
   }
 }
 
-// The acceptance tests after ICP, cheapest and most telling first. Returns false with status/reason set.
+// The acceptance tests after ICP, most telling first (no twin near the cloud is 'too few inliers', not 'not
+// converged', even though ICP stopped early). Returns false with status/reason set.
 bool reject_fit(const RegistrationConfig& c, const IcpResult& icp, RegistrationResult& r) {
   const auto fail = [&](RegistrationStatus s, std::string why) {
     r.status = s;
     r.reason = std::move(why);
     return false;
   };
-  if (!icp.converged) {
-    return fail(RegistrationStatus::kNotConverged,
-                fmt("ICP did not converge in %.0f iterations (limit %.0f)", icp.iterations, c.max_iterations));
-  }
   if (r.inliers < static_cast<std::size_t>(c.min_inliers)) {
     return fail(RegistrationStatus::kTooFewInliers, fmt("%.0f inliers < min_inliers %.0f",
                                                         static_cast<double>(r.inliers), c.min_inliers));
+  }
+  if (!icp.converged) {
+    return fail(RegistrationStatus::kNotConverged,
+                fmt("ICP did not converge in %.0f iterations (limit %.0f)", icp.iterations, c.max_iterations));
   }
   if (r.fitness < c.min_fitness) {
     return fail(RegistrationStatus::kFitnessTooLow, fmt("fitness %.3f < min_fitness %.3f", r.fitness, c.min_fitness));

@@ -48,6 +48,8 @@ struct RegistrationConfig {
   int max_zero_directions = 2;          // more poorly observed directions than this: rejected (degenerate)
   double max_mahalanobis_sq = 22.46;    // correction vs the estimator's covariance: chi^2(6 dof) at 99.9 %
 
+  bool operator==(const RegistrationConfig&) const = default;
+
   // Throws twinslam::InputError "SOURCE: registration key 'K': what" naming the first bad field.
   void validate(const std::string& source = "RegistrationConfig") const;
 };
