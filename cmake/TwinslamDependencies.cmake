@@ -29,3 +29,9 @@ find_package(EXPAT REQUIRED)
 find_package(ZLIB REQUIRED)
 find_path(OSMIUM_INCLUDE_DIR osmium/osm.hpp REQUIRED)
 find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
+# PCL 1.13 for the registration library (KdTreeFLANN per twin tile, VoxelGrid, StatisticalOutlierRemoval, and
+# IterativeClosestPointWithNormals as the reference). PCL's config drags VTK, whose MPI targets fail in a C++-only
+# project (NOTES-dependencies pitfall 1): disable VTK first. PCL headers cost ~24 s and ~2 GB per translation unit
+# (pitfall 10): only .cpp files of services/registration/lib (and its tests/benchmark) include them.
+set(CMAKE_DISABLE_FIND_PACKAGE_VTK ON)
+find_package(PCL 1.13 REQUIRED COMPONENTS common kdtree search registration features filters io)

@@ -13,5 +13,6 @@ void add_eval_command(CLI::App& app, int& exit_code);    // cmd_eval.cpp
 void add_sim_command(CLI::App& app, int& exit_code);     // cmd_sim.cpp
 void add_bench_command(CLI::App& app, int& exit_code);   // cmd_bench.cpp
 void add_twin_command(CLI::App& app, int& exit_code);    // cmd_twin.cpp
+void add_register_command(CLI::App& app, int& exit_code);  // cmd_register.cpp
 
 }  // namespace twinslam::cli

@@ -1,0 +1,57 @@
+#pragma once
+// Point-to-plane ICP of paper eq. (2): Gauss-Newton on SE(3) with a Geman-McClure kernel and a correspondence gate
+// that shrinks with the residuals (after KISS-ICP's adaptive threshold: gate = 3 sigma, kernel scale = sigma).
+//
+// Pivot. Every point is taken relative to the keyframe body position c = p_WB (not W's origin): a_j = x_j - c,
+// b_j = q_j - c. The residual is r_j = n_j . (dR a_j + dp - b_j) (eq. 2). The correction therefore acts as
+//   x' = dR (x - c) + c + dp,   i.e.  correction_W = [dR | c + dp - dR c]  (a transform of W, the dT of eq. 3).
+// Applied to the keyframe pose (eq. 5: T_WB = dT T^_WB) this gives R_WB = dR R^_WB and p_WB = p^_WB + dp exactly:
+// dp is the body position's correction and dR a rotation about the body, expressed in W. With W's origin as pivot
+// instead, a small rotation error would move the body by |dR - I| |p_WB| and couple rotation into translation by an
+// amount that depends on where the twin's origin happens to be.
+//
+// Linearization (left perturbation): x' = Exp(w) (dR a + dp) + v ~ a' + w x a' + v, so dr_j/d(w, v) =
+// [(a'_j x n_j)^T, n_j^T]: the A_j of eq. (9) up to sign, in (rotation, translation) order.
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "twinslam/registration/registration_config.hpp"
+#include "twinslam/registration/twin_index.hpp"
+
+namespace twinslam::registration {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+struct Correspondence {
+  Eigen::Vector3d a;        // source point with the current correction, relative to the pivot: dR a_j + dp [m]
+  Eigen::Vector3d b;        // twin point relative to the pivot [m]
+  Eigen::Vector3d n;        // twin normal (unit)
+  double residual = 0.0;    // n . (a - b): the point-to-plane residual of eq. (2) [m]
+  double distance = 0.0;    // |a - b| [m]
+};
+
+struct IcpResult {
+  Eigen::Matrix3d dR = Eigen::Matrix3d::Identity();  // rotation about the pivot (see above)
+  Eigen::Vector3d dp = Eigen::Vector3d::Zero();      // translation of the pivot [m, W]
+  Eigen::Isometry3d correction_W = Eigen::Isometry3d::Identity();  // [dR | c + dp - dR c], dT of eq. (3)
+  Eigen::Vector3d pivot_W = Eigen::Vector3d::Zero(); // c [m, W]
+  int iterations = 0;
+  bool converged = false;            // the last update was below the convergence thresholds
+  double threshold_m = 0.0;          // the final correspondence gate [m]
+  double sigma_m = 0.0;              // robust sigma of the final point-to-plane residuals [m]
+  std::vector<Correspondence> inliers;  // at the final correction: distance <= gate and |r| <= 3 sigma
+  std::size_t correspondences = 0;   // at the final correction within the gate (inliers and the rest)
+  double rmse_m = 0.0;               // RMSE of the inliers' point-to-plane residuals (gamma of eq. 10) [m]
+};
+
+// The correction as a transform of W: x' = dR (x - pivot) + pivot + dp.
+Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp, const Eigen::Vector3d& pivot_W);
+
+// Starts at the identity correction (the estimator's T_WL as it is). Deterministic.
+IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
+                  const Eigen::Vector3d& pivot_W);
+
+}  // namespace twinslam::registration

@@ -1,0 +1,38 @@
+#pragma once
+// The source cloud of eq. (2): the estimator's sparse landmarks of one keyframe, cleaned and expressed in W with the
+// current guess T_WL (a_j before the correction). Steps: drop low-quality landmarks, voxel downsampling (one
+// centroid per voxel, so dense clusters on textured patches do not outweigh the rest of the view), statistical
+// outlier removal (PCL StatisticalOutlierRemoval: badly triangulated points float away from their neighbours).
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "twinslam/registration/registration_config.hpp"
+
+namespace twinslam::registration {
+
+struct Landmark {
+  Eigen::Vector3d p_L = Eigen::Vector3d::Zero();  // position in the estimator's local frame L [m]
+  double quality = 1.0;                           // the estimator's confidence in [0, 1]
+};
+
+// What the estimator hands over for one keyframe.
+struct SourceInput {
+  std::vector<Landmark> landmarks;
+  Eigen::Isometry3d T_WL = Eigen::Isometry3d::Identity();  // current guess of L in W (maps p_L to p_W)
+  Eigen::Isometry3d T_LB = Eigen::Isometry3d::Identity();  // the keyframe's body pose in L
+};
+
+struct SourceCloud {
+  std::vector<Eigen::Vector3d> p_W;   // preprocessed landmarks in W with the guess: p_W = T_WL p_L [m]
+  Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();  // keyframe body position in W (T_WL T_LB): ICP's pivot [m]
+  std::size_t input = 0, after_quality = 0, after_voxel = 0;  // counts after each step (p_W.size() is the last)
+};
+
+// Throws InputError for a non-finite landmark or pose, or a quality outside [0, 1] (naming the landmark index).
+// Deterministic: the output order depends only on the input.
+SourceCloud preprocess(const RegistrationConfig& config, const SourceInput& input);
+
+}  // namespace twinslam::registration

@@ -1,0 +1,63 @@
+#pragma once
+// The registration library's one config struct (paper Sec. III-C): source-cloud preprocessing, point-to-plane ICP
+// (eq. 2), the information weighting (eqs. 8-10 or the adaptive variant) and the acceptance tests.
+// validate() is the one place the values are checked; parse_registration_config reads the YAML form (the commented
+// default file is deploy/config/registration.yaml; every key there equals the default below).
+#include <string>
+
+namespace twinslam::registration {
+
+// How the 6x6 information of an accepted registration is weighted (information.hpp).
+enum class WeightMode {
+  kPaper,     // eq. (10) as written: beta / trace(H) * exp(-gamma^2 / 2) * H
+  kAdaptive,  // H / sigma^2 (robust, inflated residual variance), zero along poorly observed directions
+  kFixed,     // a constant diagonal (ablation: geometry-blind weight)
+};
+const char* weight_mode_name(WeightMode mode);  // "paper", "adaptive", "fixed"
+
+struct RegistrationConfig {
+  // --- source cloud (preprocess.hpp) ---
+  double min_quality = 0.5;         // landmarks with quality < this are dropped, quality in [0, 1]
+  double voxel_size_m = 0.3;        // voxel downsampling edge [m]; 0 disables (one centroid per voxel)
+  int outlier_neighbors = 8;        // statistical outlier removal: neighbours per point; 0 disables
+  double outlier_stddev = 2.0;      // ... drop points whose mean neighbour distance > mean + this * stddev
+  int min_points = 30;              // fewer source points after preprocessing: rejected (too few points)
+
+  // --- ICP (icp.hpp), eq. (2) ---
+  int max_iterations = 30;              // Gauss-Newton iterations at most
+  double initial_threshold_m = 3.0;     // correspondence gate at the first iteration [m] (>= expected drift)
+  double min_threshold_m = 0.25;        // the adaptive gate never shrinks below this [m] (~ twin point spacing / 2)
+  double threshold_sigmas = 3.0;        // gate = this * robust sigma of the correspondence distances (KISS-ICP: 3)
+  double convergence_translation_m = 1e-4;  // converged when the update's translation is below this [m] ...
+  double convergence_rotation_deg = 1e-3;   // ... and its rotation below this [deg]
+
+  // --- information (information.hpp), eqs. (8)-(10) ---
+  WeightMode weights = WeightMode::kAdaptive;
+  double paper_beta = 1.0;              // beta of eq. (10) [-]
+  double correlation_inflation = 10.0;  // adaptive: residual variance x this, because neighbouring landmarks and the
+                                        // twin's modelling error are correlated: N points are not N independent looks
+  double min_sigma_m = 0.02;            // adaptive: floor of the residual sigma [m] (noise-free input stays finite)
+  double degeneracy_threshold = 0.01;   // eigenvalue of the per-point normalized H below this: direction zeroed [-]
+  double fixed_rotation_information = 1e4;    // fixed: diagonal for rotation [1/rad^2]
+  double fixed_translation_information = 1e2; // fixed: diagonal for translation [1/m^2]
+
+  // --- acceptance (registration.hpp) ---
+  int min_inliers = 30;                 // fewer inliers at the end: rejected
+  double min_fitness = 0.3;             // inliers / source points below this: rejected [-]
+  double max_rmse_m = 0.3;              // inlier point-to-plane RMSE above this: rejected [m]
+  int max_zero_directions = 2;          // more poorly observed directions than this: rejected (degenerate)
+  double max_mahalanobis_sq = 22.46;    // correction vs the estimator's covariance: chi^2(6 dof) at 99.9 %
+
+  bool operator==(const RegistrationConfig&) const = default;
+
+  // Throws twinslam::InputError "SOURCE: registration key 'K': what" naming the first bad field.
+  void validate(const std::string& source = "RegistrationConfig") const;
+};
+
+// Parses YAML text (`file` only names it in messages) over `base`; unknown keys and wrong types throw InputError
+// naming the file, line and key. Not validated: the caller applies its overrides and calls validate().
+RegistrationConfig parse_registration_config(const std::string& text, const std::string& file,
+                                             const RegistrationConfig& base = {});
+RegistrationConfig load_registration_config(const std::string& path, const RegistrationConfig& base = {});
+
+}  // namespace twinslam::registration

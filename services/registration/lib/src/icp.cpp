@@ -1,0 +1,134 @@
+// Point-to-plane ICP (see icp.hpp for the pivot, the residual and its Jacobian).
+#include "twinslam/registration/icp.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "twinslam/geometry/so3.hpp"
+
+namespace twinslam::registration {
+namespace {
+
+constexpr double kMadToSigma = 1.4826;  // sigma of a Gaussian from its median absolute deviation
+
+struct Pose {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+};
+
+std::vector<Correspondence> associate(const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
+                                      const Eigen::Vector3d& c, const Pose& pose, double gate) {
+  std::vector<Correspondence> out;
+  out.reserve(p_W.size());
+  for (const Eigen::Vector3d& x : p_W) {
+    const Eigen::Vector3d a = pose.R * (x - c) + pose.t;
+    const auto m = index.nearest(c + a, gate);
+    if (!m) continue;
+    const Eigen::Vector3d b = m->p_W - c;
+    out.push_back({a, b, m->n_W, m->n_W.dot(a - b), m->distance_m});
+  }
+  return out;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// Robust sigma of the correspondence distances (drives the gate) or of the plane residuals (inliers, RMSE).
+double robust_sigma(const std::vector<Correspondence>& corr, bool plane) {
+  std::vector<double> v;
+  v.reserve(corr.size());
+  for (const Correspondence& k : corr) v.push_back(plane ? std::abs(k.residual) : k.distance);
+  return kMadToSigma * median(std::move(v));
+}
+
+// One Gauss-Newton step x = (w, v) (rotation, translation) of the Geman-McClure-weighted eq. (2). The normal
+// equations are solved in units where rotation is scaled by the cloud's radius, so that a pseudo-inverse can leave
+// out unobservable directions (a single plane) instead of taking a huge step along them.
+Vector6d gauss_newton_step(const std::vector<Correspondence>& corr, double kernel) {
+  Matrix6d JtJ = Matrix6d::Zero();
+  Vector6d Jtr = Vector6d::Zero();
+  double radius_sq = 0.0;
+  const double k2 = kernel * kernel;
+  for (const Correspondence& k : corr) {
+    Vector6d J;
+    J << k.a.cross(k.n), k.n;
+    const double d = k2 + k.residual * k.residual;
+    const double w = k2 * k2 / (d * d);  // Geman-McClure: rho'(r) / r, 1 at r = 0
+    JtJ.noalias() += w * J * J.transpose();
+    Jtr.noalias() += w * J * k.residual;
+    radius_sq += k.a.squaredNorm();
+  }
+  const double L = std::max(1.0, std::sqrt(radius_sq / static_cast<double>(corr.size())));
+  Vector6d s;
+  s << Eigen::Vector3d::Constant(1.0 / L), Eigen::Vector3d::Ones();
+  const Matrix6d Hs = s.asDiagonal() * JtJ * s.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(Hs);
+  const double floor = 1e-9 * std::max(eig.eigenvalues().maxCoeff(), 1e-300);
+  Vector6d inv = eig.eigenvalues();
+  for (int i = 0; i < 6; ++i) inv(i) = inv(i) > floor ? 1.0 / inv(i) : 0.0;
+  const Vector6d xs = -eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() * (s.asDiagonal() * Jtr);
+  return s.asDiagonal() * xs;
+}
+
+void finish(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
+            const Pose& pose, double gate, IcpResult& out) {
+  const std::vector<Correspondence> corr = associate(index, p_W, out.pivot_W, pose, gate);
+  out.correspondences = corr.size();
+  out.threshold_m = gate;
+  out.sigma_m = std::max(robust_sigma(corr, true), 1e-9);
+  double sum_sq = 0.0;
+  for (const Correspondence& k : corr) {
+    if (std::abs(k.residual) > config.threshold_sigmas * out.sigma_m) continue;
+    out.inliers.push_back(k);
+    sum_sq += k.residual * k.residual;
+  }
+  out.rmse_m = out.inliers.empty() ? 0.0 : std::sqrt(sum_sq / static_cast<double>(out.inliers.size()));
+  out.dR = pose.R;
+  out.dp = pose.t;
+  out.correction_W = correction_about(pose.R, pose.t, out.pivot_W);
+}
+
+}  // namespace
+
+Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp, const Eigen::Vector3d& pivot_W) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = dR;
+  T.translation() = pivot_W + dp - dR * pivot_W;
+  return T;
+}
+
+IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
+                  const Eigen::Vector3d& pivot_W) {
+  IcpResult out;
+  out.pivot_W = pivot_W;
+  Pose pose;
+  double gate = config.initial_threshold_m;
+  const double conv_rot = config.convergence_rotation_deg * M_PI / 180.0;
+  for (int it = 1; it <= config.max_iterations; ++it) {
+    const std::vector<Correspondence> corr = associate(index, p_W, pivot_W, pose, gate);
+    if (corr.size() < 6) break;  // nothing to solve for: not converged
+    // KISS-ICP's adaptive threshold: the gate follows 3 sigma of the distances (never growing, never below the
+    // floor), and the kernel scale is that sigma, so far correspondences lose weight smoothly as alignment improves.
+    const double sigma = std::max(robust_sigma(corr, false), config.min_threshold_m / config.threshold_sigmas);
+    const Vector6d x = gauss_newton_step(corr, sigma);
+    const Eigen::Matrix3d dR = geometry::so3_exp(x.head<3>());
+    pose.R = geometry::so3_normalize(dR * pose.R);
+    pose.t = dR * pose.t + x.tail<3>();
+    gate = std::clamp(config.threshold_sigmas * sigma, config.min_threshold_m, gate);
+    out.iterations = it;
+    if (x.head<3>().norm() < conv_rot && x.tail<3>().norm() < config.convergence_translation_m) {
+      out.converged = true;
+      break;
+    }
+  }
+  finish(config, index, p_W, pose, gate, out);
+  return out;
+}
+
+}  // namespace twinslam::registration

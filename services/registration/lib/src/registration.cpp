@@ -1,0 +1,135 @@
+// register_cloud: the stages and the acceptance tests (see registration.hpp).
+#include "twinslam/registration/registration.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <Eigen/Cholesky>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/geometry/so3.hpp"
+
+namespace twinslam::registration {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+std::string fmt(const char* format, double a, double b) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, format, a, b);
+  return buf;
+}
+
+void check_covariance(const Matrix6d& S) {
+  if (!S.allFinite() || (S - S.transpose()).norm() > 1e-9 * std::max(1.0, S.norm())) {
+    throw InputError("registration: prior covariance must be finite and symmetric");
+  }
+  if (Eigen::LLT<Matrix6d>(S).info() != Eigen::Success) {
+    throw InputError("registration: prior covariance must be positive definite");
+  }
+}
+
+// The acceptance tests after ICP, most telling first (no twin near the cloud is 'too few inliers', not 'not
+// converged', even though ICP stopped early). Returns false with status/reason set.
+bool reject_fit(const RegistrationConfig& c, const IcpResult& icp, RegistrationResult& r) {
+  const auto fail = [&](RegistrationStatus s, std::string why) {
+    r.status = s;
+    r.reason = std::move(why);
+    return false;
+  };
+  if (r.inliers < static_cast<std::size_t>(c.min_inliers)) {
+    return fail(RegistrationStatus::kTooFewInliers, fmt("%.0f inliers < min_inliers %.0f",
+                                                        static_cast<double>(r.inliers), c.min_inliers));
+  }
+  if (!icp.converged) {
+    return fail(RegistrationStatus::kNotConverged,
+                fmt("ICP did not converge in %.0f iterations (limit %.0f)", icp.iterations, c.max_iterations));
+  }
+  if (r.fitness < c.min_fitness) {
+    return fail(RegistrationStatus::kFitnessTooLow, fmt("fitness %.3f < min_fitness %.3f", r.fitness, c.min_fitness));
+  }
+  if (r.rmse_m > c.max_rmse_m) {
+    return fail(RegistrationStatus::kRmseTooLarge, fmt("inlier RMSE %.3f m > max_rmse_m %.3f m", r.rmse_m,
+                                                       c.max_rmse_m));
+  }
+  return true;
+}
+
+bool reject_geometry(const RegistrationConfig& c, const std::optional<Matrix6d>& prior, RegistrationResult& r) {
+  if (r.details.zero_directions > c.max_zero_directions) {
+    r.status = RegistrationStatus::kDegenerate;
+    r.reason = fmt("%.0f poorly observed directions > max_zero_directions %.0f", r.details.zero_directions,
+                   c.max_zero_directions);
+    return false;
+  }
+  if (prior) {
+    r.mahalanobis_sq = r.correction_xi.dot(Eigen::LLT<Matrix6d>(*prior).solve(r.correction_xi));
+    if (r.mahalanobis_sq > c.max_mahalanobis_sq) {
+      r.status = RegistrationStatus::kCorrectionTooLarge;
+      r.reason = fmt("correction's Mahalanobis distance^2 %.2f > max_mahalanobis_sq %.2f", r.mahalanobis_sq,
+                     c.max_mahalanobis_sq);
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* status_name(RegistrationStatus status) {
+  switch (status) {
+    case RegistrationStatus::kAccepted: return "accepted";
+    case RegistrationStatus::kTooFewPoints: return "too_few_points";
+    case RegistrationStatus::kNotConverged: return "not_converged";
+    case RegistrationStatus::kTooFewInliers: return "too_few_inliers";
+    case RegistrationStatus::kFitnessTooLow: return "fitness_too_low";
+    case RegistrationStatus::kRmseTooLarge: return "rmse_too_large";
+    case RegistrationStatus::kDegenerate: return "degenerate";
+    case RegistrationStatus::kCorrectionTooLarge: return "correction_too_large";
+  }
+  return "?";
+}
+
+RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTileIndex& index,
+                                  const SourceInput& source, const std::optional<Matrix6d>& prior_covariance) {
+  if (prior_covariance) check_covariance(*prior_covariance);
+  RegistrationResult r;
+  const auto t0 = Clock::now();
+  const SourceCloud cloud = preprocess(config, source);
+  r.time.preprocess_ms = ms_since(t0);
+  r.pivot_W = cloud.p_WB;
+  r.source_points = cloud.p_W.size();
+  if (r.source_points < static_cast<std::size_t>(config.min_points)) {
+    r.status = RegistrationStatus::kTooFewPoints;
+    r.reason = fmt("%.0f source points after preprocessing < min_points %.0f", static_cast<double>(r.source_points),
+                   config.min_points);
+    r.time.total_ms = ms_since(t0);
+    return r;
+  }
+  const auto t1 = Clock::now();
+  const IcpResult icp = run_icp(config, index, cloud.p_W, cloud.p_WB);
+  r.time.icp_ms = ms_since(t1);
+  r.correction_W = icp.correction_W;
+  r.correction_xi << geometry::so3_log(icp.dR), icp.dp;
+  r.rmse_m = icp.rmse_m;
+  r.inliers = icp.inliers.size();
+  r.fitness = static_cast<double>(r.inliers) / static_cast<double>(r.source_points);
+  r.iterations = icp.iterations;
+  const auto t2 = Clock::now();
+  r.details = compute_information(config, icp.inliers, icp.rmse_m, icp.sigma_m);
+  r.information_eigenvalues = r.details.eigenvalues;
+  r.time.hessian_ms = ms_since(t2);
+  if (reject_fit(config, icp, r) && reject_geometry(config, prior_covariance, r)) {
+    r.status = RegistrationStatus::kAccepted;
+    r.information = r.details.information;
+  }
+  r.time.total_ms = ms_since(t0);
+  return r;
+}
+
+}  // namespace twinslam::registration

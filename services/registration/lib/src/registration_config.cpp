@@ -1,0 +1,164 @@
+#include "twinslam/registration/registration_config.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <variant>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "twinslam/core/error.hpp"
+
+namespace twinslam::registration {
+namespace {
+
+using C = RegistrationConfig;
+
+[[noreturn]] void bad(const std::string& file, std::size_t line, const std::string& key, const std::string& what) {
+  throw InputError(where(file, line, "registration key '" + key + "': " + what));
+}
+
+std::size_t line_of(const YAML::Node& node) { return static_cast<std::size_t>(node.Mark().line + 1); }
+
+template <class T>
+T read(const std::string& file, const std::string& key, const YAML::Node& node, const char* type) {
+  try {
+    return node.as<T>();
+  } catch (const YAML::Exception&) {
+    bad(file, line_of(node), key, std::string("expected ") + type);
+  }
+}
+
+// One row per YAML key: the parser and the "known keys" message come from the same table, so they cannot disagree.
+using Field = std::variant<double C::*, int C::*, WeightMode C::*>;
+struct Key {
+  const char* name;
+  Field field;
+};
+const std::vector<Key>& keys() {
+  static const std::vector<Key> k = {
+      {"min_quality", &C::min_quality},
+      {"voxel_size_m", &C::voxel_size_m},
+      {"outlier_neighbors", &C::outlier_neighbors},
+      {"outlier_stddev", &C::outlier_stddev},
+      {"min_points", &C::min_points},
+      {"max_iterations", &C::max_iterations},
+      {"initial_threshold_m", &C::initial_threshold_m},
+      {"min_threshold_m", &C::min_threshold_m},
+      {"threshold_sigmas", &C::threshold_sigmas},
+      {"convergence_translation_m", &C::convergence_translation_m},
+      {"convergence_rotation_deg", &C::convergence_rotation_deg},
+      {"weights", &C::weights},
+      {"paper_beta", &C::paper_beta},
+      {"correlation_inflation", &C::correlation_inflation},
+      {"min_sigma_m", &C::min_sigma_m},
+      {"degeneracy_threshold", &C::degeneracy_threshold},
+      {"fixed_rotation_information", &C::fixed_rotation_information},
+      {"fixed_translation_information", &C::fixed_translation_information},
+      {"min_inliers", &C::min_inliers},
+      {"min_fitness", &C::min_fitness},
+      {"max_rmse_m", &C::max_rmse_m},
+      {"max_zero_directions", &C::max_zero_directions},
+      {"max_mahalanobis_sq", &C::max_mahalanobis_sq},
+  };
+  return k;
+}
+
+WeightMode parse_mode(const std::string& file, const std::string& key, const YAML::Node& node) {
+  const std::string s = read<std::string>(file, key, node, "paper, adaptive or fixed");
+  if (s == "paper") return WeightMode::kPaper;
+  if (s == "adaptive") return WeightMode::kAdaptive;
+  if (s == "fixed") return WeightMode::kFixed;
+  bad(file, line_of(node), key, "expected paper, adaptive or fixed, got '" + s + "'");
+}
+
+void set(C& c, const Key& k, const std::string& file, const YAML::Node& node) {
+  if (auto d = std::get_if<double C::*>(&k.field)) c.*(*d) = read<double>(file, k.name, node, "a number");
+  if (auto i = std::get_if<int C::*>(&k.field)) c.*(*i) = read<int>(file, k.name, node, "an integer");
+  if (auto m = std::get_if<WeightMode C::*>(&k.field)) c.*(*m) = parse_mode(file, k.name, node);
+}
+
+std::string known_keys() {
+  std::string s;
+  for (const Key& k : keys()) s += (s.empty() ? "" : ", ") + std::string(k.name);
+  return s;
+}
+
+void check(bool ok, const std::string& source, const char* key, const std::string& what, double got) {
+  if (!ok) bad(source, 0, key, what + ", got " + std::to_string(got));
+}
+
+}  // namespace
+
+const char* weight_mode_name(WeightMode mode) {
+  switch (mode) {
+    case WeightMode::kPaper: return "paper";
+    case WeightMode::kAdaptive: return "adaptive";
+    case WeightMode::kFixed: return "fixed";
+  }
+  return "?";
+}
+
+void RegistrationConfig::validate(const std::string& s) const {
+  const auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
+  const auto nonneg = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  check(nonneg(min_quality) && min_quality <= 1.0, s, "min_quality", "must lie in [0, 1]", min_quality);
+  check(nonneg(voxel_size_m), s, "voxel_size_m", "must be >= 0 m", voxel_size_m);
+  check(outlier_neighbors >= 0, s, "outlier_neighbors", "must be >= 0", outlier_neighbors);
+  check(pos(outlier_stddev), s, "outlier_stddev", "must be > 0", outlier_stddev);
+  check(min_points >= 6, s, "min_points", "must be >= 6 (6 unknowns)", min_points);
+  check(max_iterations >= 1, s, "max_iterations", "must be >= 1", max_iterations);
+  check(pos(initial_threshold_m), s, "initial_threshold_m", "must be > 0 m", initial_threshold_m);
+  check(pos(min_threshold_m) && min_threshold_m <= initial_threshold_m, s, "min_threshold_m",
+        "must lie in (0, initial_threshold_m] m", min_threshold_m);
+  check(pos(threshold_sigmas), s, "threshold_sigmas", "must be > 0", threshold_sigmas);
+  check(pos(convergence_translation_m), s, "convergence_translation_m", "must be > 0 m", convergence_translation_m);
+  check(pos(convergence_rotation_deg), s, "convergence_rotation_deg", "must be > 0 deg", convergence_rotation_deg);
+  check(pos(paper_beta), s, "paper_beta", "must be > 0", paper_beta);
+  check(std::isfinite(correlation_inflation) && correlation_inflation >= 1.0, s, "correlation_inflation",
+        "must be >= 1", correlation_inflation);
+  check(pos(min_sigma_m), s, "min_sigma_m", "must be > 0 m", min_sigma_m);
+  check(nonneg(degeneracy_threshold) && degeneracy_threshold < 1.0, s, "degeneracy_threshold",
+        "must lie in [0, 1)", degeneracy_threshold);
+  check(pos(fixed_rotation_information), s, "fixed_rotation_information", "must be > 0", fixed_rotation_information);
+  check(pos(fixed_translation_information), s, "fixed_translation_information", "must be > 0",
+        fixed_translation_information);
+  check(min_inliers >= 6, s, "min_inliers", "must be >= 6 (6 unknowns)", min_inliers);
+  check(nonneg(min_fitness) && min_fitness <= 1.0, s, "min_fitness", "must lie in [0, 1]", min_fitness);
+  check(pos(max_rmse_m), s, "max_rmse_m", "must be > 0 m", max_rmse_m);
+  check(max_zero_directions >= 0 && max_zero_directions <= 6, s, "max_zero_directions", "must lie in [0, 6]",
+        max_zero_directions);
+  check(pos(max_mahalanobis_sq), s, "max_mahalanobis_sq", "must be > 0", max_mahalanobis_sq);
+}
+
+RegistrationConfig parse_registration_config(const std::string& text, const std::string& file,
+                                             const RegistrationConfig& base) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(where(file, static_cast<std::size_t>(e.mark.line + 1), "malformed YAML: " + e.msg));
+  }
+  RegistrationConfig config = base;
+  if (root.IsNull()) return config;
+  if (!root.IsMap()) throw InputError(where(file, 0, "expected a YAML mapping of registration keys"));
+  for (const auto& item : root) {
+    const std::string key = item.first.as<std::string>();
+    const Key* found = nullptr;
+    for (const Key& k : keys()) found = (key == k.name) ? &k : found;
+    if (!found) bad(file, line_of(item.first), key, "unknown key (known: " + known_keys() + ")");
+    set(config, *found, file, item.second);
+  }
+  return config;
+}
+
+RegistrationConfig load_registration_config(const std::string& path, const RegistrationConfig& base) {
+  std::ifstream in(path);
+  if (!in) throw InputError(where(path, 0, "cannot open file"));
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_registration_config(text.str(), path, base);
+}
+
+}  // namespace twinslam::registration

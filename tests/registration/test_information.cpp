@@ -1,0 +1,87 @@
+// The information's eigen-analysis on ideal geometry: exactly the unobservable directions are found and removed.
+#include <gtest/gtest.h>
+
+#include "twinslam/registration/information.hpp"
+
+namespace twinslam::registration {
+namespace {
+
+// Noise-free correspondences (a = b) on the plane through `o` with normal `n`, on a 10 m x 10 m grid, relative to
+// the pivot c = (0, 0, 0): the keyframe is 5-10 m from every plane, as in a street.
+void plane(std::vector<Correspondence>& out, const Eigen::Vector3d& o, const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  const Eigen::Vector3d n = u.cross(v).normalized();
+  for (int i = 0; i <= 10; ++i) {
+    for (int j = 0; j <= 10; ++j) {
+      const Eigen::Vector3d p = o + 0.1 * i * u + 0.1 * j * v;
+      out.push_back({p, p, n, 0.0, 0.0});
+    }
+  }
+}
+
+Vector6d dir(double wx, double wy, double wz, double vx, double vy, double vz) {
+  Vector6d d;
+  d << wx, wy, wz, vx, vy, vz;
+  return d;
+}
+
+Information analyse(const std::vector<Correspondence>& c) {
+  RegistrationConfig config;  // adaptive
+  return compute_information(config, c, 0.1, 0.1);
+}
+
+void expect_blind_along(const Information& info, const std::vector<Vector6d>& dirs) {
+  for (const Vector6d& d : dirs) {
+    EXPECT_LT((info.H * d).norm(), 1e-9 * info.H.norm()) << d.transpose();        // H itself has them in its null space
+    EXPECT_LT((info.information * d).norm(), 1e-9 * info.information.norm()) << d.transpose();  // ... and W_m too
+  }
+}
+
+TEST(Information, OnePlaneLeavesThreeDirections) {
+  std::vector<Correspondence> c;
+  plane(c, {-20, -20, -8}, {40, 0, 0}, {0, 40, 0});  // ground 8 m below the body
+  const Information info = analyse(c);
+  EXPECT_EQ(info.zero_directions, 3);
+  EXPECT_LT(info.eigenvalues.head<3>().cwiseAbs().maxCoeff(), 1e-12);  // ~0 exactly
+  EXPECT_GT(info.eigenvalues(3), 0.05);
+  expect_blind_along(info, {dir(0, 0, 0, 1, 0, 0), dir(0, 0, 0, 0, 1, 0), dir(0, 0, 1, 0, 0, 0)});
+  EXPECT_GT((info.information * dir(0, 0, 0, 0, 0, 1)).norm(), 1.0);  // height stays observed
+}
+
+TEST(Information, CorridorOfTwoWallsAndAFloorLeavesOnlyTheAlongCorridorDirection) {
+  std::vector<Correspondence> c;
+  plane(c, {-5, -30, -6}, {10, 0, 0}, {0, 60, 0});   // floor
+  plane(c, {-5, -30, -6}, {0, 60, 0}, {0, 0, 20});   // wall x = -5
+  plane(c, {5, -30, -6}, {0, 60, 0}, {0, 0, 20});    // wall x = +5
+  const Information info = analyse(c);
+  EXPECT_EQ(info.zero_directions, 1);
+  EXPECT_LT(std::abs(info.eigenvalues(0)), 1e-12);
+  EXPECT_GT(info.eigenvalues(1), 0.01);
+  EXPECT_NEAR(std::abs(info.directions.col(0).dot(dir(0, 0, 0, 0, 1, 0))), 1.0, 1e-9);  // the zeroed one is t_y
+  expect_blind_along(info, {dir(0, 0, 0, 0, 1, 0)});
+}
+
+TEST(Information, CornerOfThreePlanesObservesEverything) {
+  std::vector<Correspondence> c;
+  plane(c, {-10, -10, -8}, {20, 0, 0}, {0, 20, 0});
+  plane(c, {-10, -10, -8}, {0, 20, 0}, {0, 0, 20});
+  plane(c, {-10, -10, -8}, {0, 0, 20}, {20, 0, 0});
+  const Information info = analyse(c);
+  EXPECT_EQ(info.zero_directions, 0);
+  EXPECT_GT(info.eigenvalues(0), 0.01);
+  EXPECT_NEAR((info.information - info.H / info.sigma_sq).norm(), 0.0, 1e-9 * info.information.norm());
+}
+
+TEST(Information, HessianIsIndependentOfWherePointsAreExpressedOnlyThroughThePivot) {
+  // H depends on a_j relative to the pivot: shifting every point and the pivot together changes nothing, which is
+  // why the correction is linearized about the keyframe position and not about W's origin.
+  std::vector<Correspondence> c;
+  plane(c, {-10, -10, -8}, {20, 0, 0}, {0, 20, 0});
+  plane(c, {-10, -10, -8}, {0, 20, 0}, {0, 0, 20});
+  const Matrix6d H = registration_hessian(c);
+  EXPECT_NEAR(H(3, 3) + H(4, 4) + H(5, 5), static_cast<double>(c.size()), 1e-9);  // unit normals: tr(sum n n^T) = N
+  EXPECT_EQ((H - H.transpose()).norm(), 0.0);
+  EXPECT_TRUE(compute_information(RegistrationConfig{}, {}, 0.0, 0.0).information.isZero());
+}
+
+}  // namespace
+}  // namespace twinslam::registration
