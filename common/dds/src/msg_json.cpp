@@ -74,9 +74,11 @@ void to_json(json& j, const LocalMap& m) {
 }
 void to_json(json& j, const Registration& m) {
   j = {{"vehicle_id", m.vehicle_id()}, {"keyframe_stamp_ns", m.keyframe_stamp_ns()}, {"seq", m.seq()},
-       {"status", static_cast<int>(m.status())}, {"correction_W", m.correction_W()},
-       {"information", array(m.information())}, {"rmse_m", m.rmse_m()}, {"inliers", m.inliers()},
-       {"fitness", m.fitness()}, {"compute_ms", m.compute_ms()}};
+       {"status", static_cast<int>(m.status())}, {"reason", m.reason()}, {"correction_W", m.correction_W()},
+       {"pivot_W", m.pivot_W()}, {"information", array(m.information())},
+       {"information_eigenvalues", array(m.information_eigenvalues())}, {"rmse_m", m.rmse_m()},
+       {"source_points", m.source_points()}, {"inliers", m.inliers()}, {"fitness", m.fitness()},
+       {"compute_ms", m.compute_ms()}, {"latency_ms", m.latency_ms()}};
 }
 void to_json(json& j, const TileRequest& m) {
   j = {{"vehicle_id", m.vehicle_id()}, {"stamp_ns", m.stamp_ns()}, {"center_e_m", m.center_e_m()},

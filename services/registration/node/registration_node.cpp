@@ -1,10 +1,147 @@
 #include "registration_node.hpp"
 
+#include <cstdio>
+#include <optional>
+
+#include <spdlog/spdlog.h>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/dds/convert.hpp"
+#include "twinslam/geometry/information_order.hpp"
+
 namespace twinslam::registration {
 
-void wire_registration_inputs(dds::Node& node, dds::Counters& counters) {
-  node.subscribe<msg::LocalMap>(dds::topics::kLocalMap, [&counters](const msg::LocalMap&) { counters.add("local_maps_in"); });
-  node.subscribe<msg::MapTile>(dds::topics::kMapTile, [&counters](const msg::MapTile&) { counters.add("tiles_in"); });
+std::optional<twin::TileKey> parse_tile_key(const std::string& wire_key) {
+  const auto slash = wire_key.rfind('/');
+  const std::string cell = slash == std::string::npos ? wire_key : wire_key.substr(slash + 1);
+  twin::TileKey key;
+  char tail = 0;
+  if (std::sscanf(cell.c_str(), "%d_%d%c", &key.ix, &key.iy, &tail) != 2) return std::nullopt;
+  return key;
+}
+
+msg::RegistrationStatus to_msg(RegistrationStatus s) {
+  switch (s) {
+    case RegistrationStatus::kAccepted: return msg::REG_ACCEPTED;
+    case RegistrationStatus::kTooFewPoints: return msg::REG_REJECTED_FEW_POINTS;
+    case RegistrationStatus::kNotConverged: return msg::REG_REJECTED_NOT_CONVERGED;
+    case RegistrationStatus::kTooFewInliers: return msg::REG_REJECTED_FEW_INLIERS;
+    case RegistrationStatus::kFitnessTooLow: return msg::REG_REJECTED_FITNESS;
+    case RegistrationStatus::kRmseTooLarge: return msg::REG_REJECTED_RMSE;
+    case RegistrationStatus::kDegenerate: return msg::REG_REJECTED_DEGENERATE;
+    case RegistrationStatus::kCorrectionTooLarge: return msg::REG_REJECTED_CORRECTION;
+  }
+  return msg::REG_REJECTED_NOT_CONVERGED;
+}
+
+RegistrationNode::RegistrationNode(dds::Node& node, dds::Counters& counters, const RegistrationNodeOptions& options)
+    : node_(node),
+      counters_(counters),
+      options_(options),
+      writer_(node.writer<msg::Registration>(dds::topics::kRegistration)),
+      twin_(options.tile_size_m, options.window_m, options.max_stored_tiles),
+      worker_([this] { run(); }) {
+  node.subscribe<msg::LocalMap>(dds::topics::kLocalMap, [this](const msg::LocalMap& m) {
+    counters_.add("local_maps_in");
+    std::lock_guard lock(mutex_);
+    auto& slot = pending_[m.vehicle_id()];
+    if (slot.map) counters_.add("skipped");  // the previous cloud of this vehicle was never served: newest wins
+    slot = {std::make_shared<const msg::LocalMap>(m), std::chrono::steady_clock::now()};
+    wake_.notify_one();
+  });
+  node.subscribe<msg::MapTile>(dds::topics::kMapTile, [this](const msg::MapTile& t) {
+    counters_.add("tiles_in");
+    std::lock_guard lock(mutex_);
+    tiles_in_.push_back(std::make_shared<const msg::MapTile>(t));
+    wake_.notify_one();
+  });
+}
+
+RegistrationNode::~RegistrationNode() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  worker_.join();
+}
+
+void RegistrationNode::run() {
+  std::unique_lock lock(mutex_);
+  while (!stop_) {
+    // Tiles first: a cloud is registered against everything received before it.
+    while (!tiles_in_.empty()) {
+      const auto t = tiles_in_.front();
+      tiles_in_.pop_front();
+      lock.unlock();
+      const auto key = parse_tile_key(t->tile_key());
+      if (key) {
+        const Eigen::AlignedBox3d bounds(Eigen::Vector3d(t->bounds_W()[0], t->bounds_W()[1], t->bounds_W()[2]),
+                                         Eigen::Vector3d(t->bounds_W()[3], t->bounds_W()[4], t->bounds_W()[5]));
+        twin_.add_tile(*key, bounds, std::vector<std::uint8_t>(t->points_draco().begin(), t->points_draco().end()));
+      } else {
+        counters_.add("tiles_rejected");
+        spdlog::warn("map tile '{}': malformed key", t->tile_key());
+      }
+      lock.lock();
+    }
+    if (pending_.empty()) {
+      wake_.wait(lock);
+      continue;
+    }
+    // Round robin: the first vehicle after the one served last.
+    auto it = pending_.upper_bound(last_served_);
+    if (it == pending_.end()) it = pending_.begin();
+    const Pending p = it->second;
+    last_served_ = it->first;
+    pending_.erase(it);
+    lock.unlock();
+    serve(p);
+    lock.lock();
+  }
+}
+
+void RegistrationNode::serve(const Pending& p) {
+  const msg::LocalMap& m = *p.map;
+  SourceInput source;
+  source.T_LB = dds::from_msg(m.T_LB());
+  source.T_WL = dds::from_msg(m.T_WL());
+  source.landmarks.reserve(m.landmarks().size());
+  for (const auto& l : m.landmarks()) source.landmarks.push_back({dds::from_msg(l.p_L()), l.quality()});
+  msg::Registration out;
+  out.vehicle_id(m.vehicle_id());
+  out.keyframe_stamp_ns(m.keyframe_stamp_ns());
+  out.seq(seq_++);
+  const Eigen::Vector3d p_WB = (source.T_WL * source.T_LB).translation();
+  try {
+    const WindowedTwinStats w = twin_.update(m.vehicle_id(), p_WB);
+    counters_.add("index_tiles_added", w.added);
+    if (!twin_.covers(p_WB, 0.5 * options_.window_m)) {
+      out.status(msg::REG_REJECTED_NO_MAP);
+      out.reason("no twin tiles within " + std::to_string(static_cast<int>(0.5 * options_.window_m)) + " m yet");
+    } else {
+      const RegistrationResult r = register_cloud(options_.registration, twin_.index(), source);
+      out.status(to_msg(r.status));
+      out.reason(r.reason);
+      out.correction_W(dds::to_msg(r.correction_W));
+      out.pivot_W(dds::to_msg(r.pivot_W));
+      const auto info = geometry::to_row_major(r.information);
+      std::copy(info.begin(), info.end(), out.information().begin());
+      for (int i = 0; i < 6; ++i) out.information_eigenvalues()[i] = r.information_eigenvalues[i];
+      out.rmse_m(r.rmse_m);
+      out.source_points(static_cast<unsigned>(r.source_points));
+      out.inliers(static_cast<unsigned>(r.inliers));
+      out.fitness(r.fitness);
+      out.compute_ms(r.time.total_ms + w.update_ms);
+    }
+  } catch (const InputError& e) {
+    out.status(msg::REG_REJECTED_FEW_POINTS);
+    out.reason(std::string("bad input: ") + e.what());
+  }
+  out.latency_ms(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - p.arrived).count());
+  counters_.add(out.status() == msg::REG_ACCEPTED ? "accepted" : "rejected");
+  counters_.add("registrations_out");
+  writer_.publish(out);
 }
 
 }  // namespace twinslam::registration

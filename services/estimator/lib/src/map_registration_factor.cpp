@@ -27,7 +27,8 @@ struct MapRegistrationResidual {
     T p_W[3];
     world_from_local(T_WL, pose, p_W);
     for (int k = 0; k < 3; ++k) e[3 + k] = p_W[k] - T(p_meas[k]);
-    Eigen::Map<Eigen::Matrix<T, 6, 1>>(r) = S.cast<T>() * e;
+    Eigen::Map<Eigen::Matrix<T, 6, 1>> residual(r);
+    residual = S.cast<T>() * e;
     return true;
   }
 };
