@@ -20,7 +20,8 @@ struct Place {
 struct Fields::Entry {
   std::string key;
   std::function<void(const YAML::Node&, const Place&)> read;
-  std::unique_ptr<Fields> nested;  // set for section()
+  std::function<std::string()> show;  // the field's value as a YAML scalar
+  std::unique_ptr<Fields> nested;     // set for section()
 };
 
 namespace {
@@ -39,6 +40,13 @@ T read_as(const YAML::Node& node, const Place& at, const std::string& expected) 
   } catch (const YAML::Exception&) {
     bad(at, line_of(node), "expected " + expected);
   }
+}
+
+std::string show_number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
 }
 
 std::string join(const std::vector<std::string>& names, const char* separator) {
@@ -92,12 +100,12 @@ Fields& Fields::number(const std::string& key, double& field, const std::string&
                 const double v = read_as<double>(node, at, expected);
                 if (!std::isfinite(v)) bad(at, line_of(node), "expected a finite number, got " + node.Scalar());
                 field = v;
-              }, nullptr});
+              }, [&field] { return show_number(field); }, nullptr});
 }
 
 Fields& Fields::integer(const std::string& key, int& field) {
   return add({key, [&field](const YAML::Node& node, const Place& at) { field = read_as<int>(node, at, "an integer"); },
-              nullptr});
+              [&field] { return std::to_string(field); }, nullptr});
 }
 
 Fields& Fields::count(const std::string& key, unsigned& field) {
@@ -105,29 +113,33 @@ Fields& Fields::count(const std::string& key, unsigned& field) {
                 const long long v = read_as<long long>(node, at, "a non-negative integer");
                 if (v < 0 || v > static_cast<long long>(~0u)) bad(at, line_of(node), "expected a non-negative integer");
                 field = static_cast<unsigned>(v);
-              }, nullptr});
+              }, [&field] { return std::to_string(field); }, nullptr});
 }
 
 Fields& Fields::flag(const std::string& key, bool& field) {
   return add({key, [&field](const YAML::Node& node, const Place& at) {
                 field = read_as<bool>(node, at, "true or false");
-              }, nullptr});
+              }, [&field] { return std::string(field ? "true" : "false"); }, nullptr});
 }
 
 Fields& Fields::text(const std::string& key, std::string& field, const std::string& what) {
   return add({key, [&field, what](const YAML::Node& node, const Place& at) {
                 field = read_as<std::string>(node, at, what);
-              }, nullptr});
+              }, [&field] { return field; }, nullptr});
 }
 
 Fields& Fields::milliseconds(const std::string& key, std::chrono::milliseconds& field) {
   return add({key, [&field](const YAML::Node& node, const Place& at) {
                 field = std::chrono::milliseconds(read_as<long long>(node, at, "an integer [ms]"));
-              }, nullptr});
+              }, [&field] { return std::to_string(field.count()); }, nullptr});
 }
 
 Fields& Fields::choice_index(const std::string& key, std::vector<std::string> names,
-                             std::function<void(std::size_t)> set) {
+                             std::function<void(std::size_t)> set, std::function<std::size_t()> get) {
+  auto show = [names, get = std::move(get)] {
+    const std::size_t i = get();
+    return i < names.size() ? names[i] : std::string("?");
+  };
   return add({key, [names = std::move(names), set = std::move(set)](const YAML::Node& node, const Place& at) {
                 const std::string expected = "one of " + join(names, " | ");
                 const auto value = read_as<std::string>(node, at, expected);
@@ -135,11 +147,11 @@ Fields& Fields::choice_index(const std::string& key, std::vector<std::string> na
                   if (names[i] == value) return set(i);
                 }
                 bad(at, line_of(node), "expected " + expected + ", got " + value);
-              }, nullptr});
+              }, std::move(show), nullptr});
 }
 
 Fields& Fields::section(const std::string& key) {
-  add({key, {}, std::make_unique<Fields>(section_)});
+  add({key, {}, {}, std::make_unique<Fields>(section_)});
   return *entries_.back().nested;
 }
 
@@ -156,6 +168,18 @@ void Fields::parse(const std::string& text, const std::string& file) const {
 }
 
 void Fields::load(const std::string& path) const { parse(read_text_file(path), path); }
+
+std::vector<std::pair<std::string, std::string>> Fields::values() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& e : entries_) {
+    if (!e.nested) {
+      out.emplace_back(e.key, e.show());
+      continue;
+    }
+    for (auto& [key, value] : e.nested->values()) out.emplace_back(e.key + "." + key, std::move(value));
+  }
+  return out;
+}
 
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path);

@@ -37,7 +37,14 @@ class Fields {
   Fields& choice(const std::string& key, E& field, const std::vector<std::pair<std::string, E>>& names) {
     std::vector<std::string> keys;
     for (const auto& [name, value] : names) keys.push_back(name);
-    return choice_index(key, keys, [&field, names](std::size_t i) { field = names[i].second; });
+    return choice_index(
+        key, keys, [&field, names](std::size_t i) { field = names[i].second; },
+        [&field, names] {
+          for (std::size_t i = 0; i < names.size(); ++i) {
+            if (names[i].second == field) return i;
+          }
+          return names.size();
+        });
   }
   // A nested mapping `key: {...}`; the returned table (owned by this one) binds its keys.
   Fields& section(const std::string& key);
@@ -48,11 +55,16 @@ class Fields {
   // Reads the file at `path` and parses it ("PATH: cannot open file" if it cannot be read).
   void load(const std::string& path) const;
 
+  // Every bound key (nested ones as "section.key") with the current value of its field as a YAML scalar, in binding
+  // order: to log the effective config, or to compare two configs key by key.
+  std::vector<std::pair<std::string, std::string>> values() const;
+
   struct Entry;  // one key: how to read its value (a YAML::Node, so defined in the .cpp)
 
  private:
   friend struct FieldsWalker;
-  Fields& choice_index(const std::string& key, std::vector<std::string> names, std::function<void(std::size_t)> set);
+  Fields& choice_index(const std::string& key, std::vector<std::string> names, std::function<void(std::size_t)> set,
+                       std::function<std::size_t()> get);
   Fields& add(Entry entry);
 
   std::string section_;
