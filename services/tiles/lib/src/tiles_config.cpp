@@ -26,14 +26,18 @@ void TilesConfig::validate(const std::string& source) const {
   if (twin_dir.empty()) bad(source, "twin_dir", "must name the twin store directory");
 }
 
-TilesConfig parse_tiles_config(const std::string& text, const std::string& file, const TilesConfig& base) {
-  TilesConfig config = base;
-  yaml::Fields("tiles")
-      .number("window_m", config.window_m, "m")
+void bind_tiles_config(yaml::Fields& fields, TilesConfig& config) {
+  fields.number("window_m", config.window_m, "m")
       .integer("cache_tiles", config.cache_tiles)
       .text("twin_dir", config.twin_dir, "a path")
-      .integer("max_tiles_on_wire", config.max_tiles_on_wire)
-      .parse(text, file);
+      .integer("max_tiles_on_wire", config.max_tiles_on_wire);
+}
+
+TilesConfig parse_tiles_config(const std::string& text, const std::string& file, const TilesConfig& base) {
+  TilesConfig config = base;
+  yaml::Fields fields("tiles");
+  bind_tiles_config(fields, config);
+  fields.parse(text, file);
   return config;
 }
 
