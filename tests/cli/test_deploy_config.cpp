@@ -139,7 +139,8 @@ TEST(DeployConfig, WrongTypeNamesFileLineAndKey) {
   EXPECT_EQ(error_of(s[1], "min_distance_px: .nan\n"),
             "tracking.yaml:1: tracking key 'min_distance_px': expected a finite number, got .nan");
   EXPECT_EQ(error_of(s[2], "window_m: wide\n"), "tiles.yaml:1: tiles key 'window_m': expected a number [m]");
-  EXPECT_EQ(error_of(s[3], "ack_timeout_s: soon\n"), "ingest.yaml:1: ingest key 'ack_timeout_s': expected a number [s]");
+  EXPECT_EQ(error_of(s[3], "ack_timeout_s: soon\n"),
+            "ingest.yaml:1: ingest key 'ack_timeout_s': expected a number [s]");
 }
 
 TEST(DeployConfig, OutOfRangeNamesFileAndKey) {
@@ -149,6 +150,7 @@ TEST(DeployConfig, OutOfRangeNamesFileAndKey) {
             "estimator.yaml: motion_init.min_span_s: must be <= window_s");
   EXPECT_EQ(error_of(s[0], "node:\n  lockstep_max_solver_time_s: 0\n"),
             "estimator.yaml: estimator key 'node.lockstep_max_solver_time_s': must be > 0");
-  EXPECT_EQ(error_of(s[1], "klt_window_px: 4\n"), "tracking.yaml: tracking key 'klt_window_px': must be odd and >= 5, got 4");
+  EXPECT_EQ(error_of(s[1], "klt_window_px: 4\n"),
+            "tracking.yaml: tracking key 'klt_window_px': must be odd and >= 5, got 4");
   EXPECT_EQ(error_of(s[3], "speed: 0\n"), "ingest.yaml: ingest key 'speed': must lie in (0, 1000], got 0");
 }

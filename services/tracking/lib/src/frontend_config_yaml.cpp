@@ -22,7 +22,8 @@ void bind_detection_and_klt(yaml::Fields& f, FrontendConfig& c) {
 
 void bind_ransac_and_images(yaml::Fields& f, FrontendConfig& c) {
   using Model = FrontendConfig::RansacModel;
-  f.choice("ransac_model", c.ransac_model, {{"essential", Model::kEssential}, {"known_rotation", Model::kKnownRotation}})
+  f.choice("ransac_model", c.ransac_model,
+           {{"essential", Model::kEssential}, {"known_rotation", Model::kKnownRotation}})
       .number("ransac_threshold_px", c.ransac_threshold_px, "px")
       .number("ransac_confidence", c.ransac_confidence)
       .integer("ransac_max_iterations", c.ransac_max_iterations)
