@@ -111,3 +111,11 @@ TEST(YamlFields, ValuesListEveryKeyAndRoundTrip) {
   EXPECT_EQ(back.model, Model::kExact);
   EXPECT_EQ(bind(back).values(), bind(d).values());
 }
+
+TEST(YamlFields, ChangedValuesListOnlyTheKeysThatDiffer) {
+  Demo defaults, d;
+  EXPECT_EQ(yaml::changed_values(bind(d).values(), bind(defaults).values()), "all defaults");
+  d.count = 5;
+  d.inner_m = 2.5;
+  EXPECT_EQ(yaml::changed_values(bind(d).values(), bind(defaults).values()), "count=5, inner.inner_m=2.5");
+}

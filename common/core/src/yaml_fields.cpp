@@ -181,6 +181,15 @@ std::vector<std::pair<std::string, std::string>> Fields::values() const {
   return out;
 }
 
+std::string changed_values(const std::vector<std::pair<std::string, std::string>>& now,
+                           const std::vector<std::pair<std::string, std::string>>& base) {
+  std::vector<std::string> changed;
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    if (i >= base.size() || now[i] != base[i]) changed.push_back(now[i].first + "=" + now[i].second);
+  }
+  return changed.empty() ? "all defaults" : join(changed, ", ");
+}
+
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(where(path, 0, "cannot open file"));

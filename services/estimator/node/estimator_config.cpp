@@ -21,6 +21,14 @@ void bind_estimator_service_config(yaml::Fields& fields, EstimatorServiceConfig&
       .number("lockstep_max_solver_time_s", config.lockstep_max_solver_time_s, "s");
 }
 
+std::string changed_from_defaults(const EstimatorServiceConfig& config) {
+  EstimatorServiceConfig now = config, defaults;
+  yaml::Fields a("estimator"), b("estimator");
+  bind_estimator_service_config(a, now);
+  bind_estimator_service_config(b, defaults);
+  return yaml::changed_values(a.values(), b.values());
+}
+
 EstimatorServiceConfig parse_estimator_service_config(const std::string& text, const std::string& file,
                                                       const EstimatorServiceConfig& base) {
   EstimatorServiceConfig c = base;

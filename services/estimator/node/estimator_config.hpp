@@ -25,6 +25,9 @@ struct EstimatorServiceConfig {
 // Binds every key of the file to `config` (the window's keys and node:).
 void bind_estimator_service_config(yaml::Fields& fields, EstimatorServiceConfig& config);
 
+// The keys that differ from the defaults ("window_keyframes=10, node.imu_wait_ms=50"), or "all defaults".
+std::string changed_from_defaults(const EstimatorServiceConfig& config);
+
 // The YAML text over `base`, validated; InputError naming `file`, the line where there is one, and the key.
 EstimatorServiceConfig parse_estimator_service_config(const std::string& text, const std::string& file,
                                                       const EstimatorServiceConfig& base = {});

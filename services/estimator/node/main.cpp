@@ -1,4 +1,6 @@
 // twinslam-estimator: sliding-window visual-inertial estimator (features + IMU in, odometry and local maps out).
+#include <spdlog/spdlog.h>
+
 #include "estimator_config.hpp"
 #include "estimator_node.hpp"
 #include "twinslam/camera/sensor_yaml.hpp"
@@ -20,7 +22,10 @@ int main(int argc, char** argv) {
   app.add_option("--window", window, "Keyframes in the sliding window (default 8; wins over --config)");
   return twinslam::dds::service_main("estimator", app, service, argc, argv, [&] {
     est::EstimatorServiceConfig config;
-    if (!config_file.empty()) config = est::load_estimator_service_config(config_file);
+    if (!config_file.empty()) {
+      config = est::load_estimator_service_config(config_file);
+      spdlog::info("config {}: {}", config_file, est::changed_from_defaults(config));
+    }
     const twinslam::CameraConfig camera = twinslam::read_camera_sensor_yaml(camera_file);
     config.options.estimator.T_BC = camera.T_BC;
     config.options.estimator.focal_px = camera.intrinsics.fu;

@@ -1,6 +1,8 @@
 // twinslam-tracking: visual frontend service (images + IMU -> FeatureFrame).
 #include <memory>
 
+#include <spdlog/spdlog.h>
+
 #include "tracking_config.hpp"
 #include "tracking_node.hpp"
 #include "twinslam/camera/sensor_yaml.hpp"
@@ -16,7 +18,10 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_file, "Tracking config YAML (deploy/config/tracking.yaml lists every key)");
   return twinslam::dds::service_main("tracking", app, service, argc, argv, [&] {
     twinslam::tracking::TrackingNodeOptions options;
-    if (!config_file.empty()) options = twinslam::tracking::load_tracking_config(config_file);
+    if (!config_file.empty()) {
+      options = twinslam::tracking::load_tracking_config(config_file);
+      spdlog::info("config {}: {}", config_file, twinslam::tracking::changed_from_defaults(options));
+    }
     options.camera = twinslam::read_camera_sensor_yaml(camera_file);
     twinslam::dds::Node node(service.node);
     twinslam::dds::Counters counters;

@@ -11,6 +11,14 @@ void bind_tracking_config(yaml::Fields& fields, TrackingNodeOptions& options) {
   fields.section("node").milliseconds("imu_wait_ms", options.imu_wait);
 }
 
+std::string changed_from_defaults(const TrackingNodeOptions& options) {
+  TrackingNodeOptions now = options, defaults;
+  yaml::Fields a("tracking"), b("tracking");
+  bind_tracking_config(a, now);
+  bind_tracking_config(b, defaults);
+  return yaml::changed_values(a.values(), b.values());
+}
+
 TrackingNodeOptions parse_tracking_config(const std::string& text, const std::string& file,
                                           const TrackingNodeOptions& base) {
   TrackingNodeOptions o = base;

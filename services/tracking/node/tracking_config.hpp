@@ -14,6 +14,9 @@ namespace twinslam::tracking {
 // Binds every key of the file to `options` (the frontend's keys and node:).
 void bind_tracking_config(yaml::Fields& fields, TrackingNodeOptions& options);
 
+// The keys that differ from the defaults ("max_features=120, clahe=true"), or "all defaults".
+std::string changed_from_defaults(const TrackingNodeOptions& options);
+
 // The YAML text over `base` (its camera is kept), validated; InputError naming `file`, the line and the key.
 TrackingNodeOptions parse_tracking_config(const std::string& text, const std::string& file,
                                           const TrackingNodeOptions& base = {});

@@ -71,6 +71,11 @@ class Fields {
   std::vector<Entry> entries_;
 };
 
+// "key=value, ..." for each key whose value in `now` differs from `base` (both values() of tables bound alike), or
+// "all defaults": what a service logs about its config.
+std::string changed_values(const std::vector<std::pair<std::string, std::string>>& now,
+                           const std::vector<std::pair<std::string, std::string>>& base);
+
 // The whole file as a string; InputError "PATH: cannot open file".
 std::string read_text_file(const std::string& path);
 
