@@ -1,5 +1,7 @@
 // Acceptance (issue 2): each bad input ends with exit code 2 and a one-line reason naming the file and the problem.
 #include <filesystem>
+#include <fstream>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -74,4 +76,57 @@ TEST(CliErrors, MalformedLaunchFile) {
 
 TEST(CliErrors, UnknownTopicForEcho) {
   expect_bad_input(test::run_process({test::bin("twinslam"), "echo", "nope"}), {"unknown topic 'nope'"});
+}
+
+namespace {
+// A config file with `text` in a fresh folder (the folder doubles as a --config-dir).
+fs::path config_dir_with(const std::string& name, const std::string& file, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("twinslam_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / file) << text;
+  return dir;
+}
+const std::string kEuroc = std::string(TWINSLAM_SHARED_DIR) + "/data/euroc-v1-01-micro";
+}  // namespace
+
+TEST(CliErrors, BadServiceConfigNamesFileLineAndKey) {
+  const std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", std::to_string(test::test_domain())}};
+  const std::string camera = kEuroc + "/mav0/cam0/sensor.yaml", imu = kEuroc + "/mav0/imu0/sensor.yaml";
+  const fs::path dir = config_dir_with("cfg_services", "estimator.yaml", "window_keyframes: 8\nwindow: 3\n");
+  expect_bad_input(test::run_process({test::bin("twinslam-estimator"), "--camera", camera, "--imu", imu, "--config",
+                                      (dir / "estimator.yaml").string()}, env),
+                   {(dir / "estimator.yaml").string() + ":2:", "'window'", "unknown key"});
+  std::ofstream(dir / "tracking.yaml") << "max_features: many\n";
+  expect_bad_input(test::run_process({test::bin("twinslam-tracking"), "--camera", camera, "--config",
+                                      (dir / "tracking.yaml").string()}, env),
+                   {(dir / "tracking.yaml").string() + ":1:", "'max_features'", "expected an integer"});
+  std::ofstream(dir / "ingest.yaml") << "ack_timeout_s: -1\n";
+  expect_bad_input(test::run_process({test::bin("twinslam-ingest"), "--dataset", kEuroc, "--config",
+                                      (dir / "ingest.yaml").string()}, env),
+                   {(dir / "ingest.yaml").string(), "'ack_timeout_s'", "must lie in"});
+  std::ofstream(dir / "tiles.yaml") << "window_m: [1\n";
+  expect_bad_input(test::run_process({test::bin("twinslam-tiles"), "--no-twin", "--config",
+                                      (dir / "tiles.yaml").string()}, env),
+                   {(dir / "tiles.yaml").string() + ":", "malformed YAML"});
+  expect_bad_input(test::run_process({test::bin("twinslam-estimator"), "--camera", camera, "--imu", imu, "--config",
+                                      "/nonexistent/estimator.yaml"}, env),
+                   {"/nonexistent/estimator.yaml", "cannot open file"});
+  fs::remove_all(dir);
+}
+
+TEST(CliErrors, RunWithABadConfigDirStopsWithTheServicesLine) {
+  const std::string out = "/tmp/twinslam_cfg_run_" + std::to_string(::getpid());
+  const std::string domain = std::to_string(test::test_domain());
+  expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--domain", domain,
+                                      "--config-dir", "/nonexistent/config"}),
+                   {"/nonexistent/config", "config directory does not exist"});
+  // The estimator rejects its file during start-up: run ends with exit 2 and the estimator's own line.
+  const fs::path dir = config_dir_with("cfg_run", "estimator.yaml", "motion_init:\n  window_s: long\n");
+  expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--domain", domain,
+                                      "--config-dir", dir.string()}, {}, std::chrono::seconds(60)),
+                   {"estimator: " + (dir / "estimator.yaml").string() + ":2:", "'motion_init.window_s'",
+                    "expected a number [s]"});
+  fs::remove_all(dir);
+  fs::remove_all(out);
 }

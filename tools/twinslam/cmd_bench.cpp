@@ -53,6 +53,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
     std::string dataset, out;
     std::vector<std::string> modes = all_modes();
     bool features = false;
+    std::string config_dir;
   };
   auto o = std::make_shared<Options>();
   cmd->add_option("dataset", o->dataset, "Dataset folder with ground truth")->required();
@@ -61,6 +62,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       ->delimiter(',')
       ->check(CLI::IsMember(all_modes()));
   cmd->add_flag("--features", o->features, "Feed the dataset's ideal feature tracks instead of images");
+  cmd->add_option("--config-dir", o->config_dir, "Folder of <service>.yaml configs, passed to every run");
   cmd->callback([o, &exit_code] {
     const Trajectory gt = read_dataset_groundtruth(o->dataset);
     fs::create_directories(o->out);
@@ -86,6 +88,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       run.mode = mode;
       run.out = (fs::path(o->out) / "runs" / mode).string();
       run.features = o->features;
+      run.config_dir = o->config_dir;
       run.quiet = true;
       std::cerr << "bench: running " << mode << " ..." << std::endl;
       if (run_pipeline(run) != kExitOk || !fs::exists(fs::path(run.out) / "trajectory.tum")) {

@@ -15,6 +15,7 @@
 
 #include "modes.hpp"
 #include "monitor.hpp"
+#include "run_config_dir.hpp"
 #include "run_pipeline.hpp"
 #include "twinslam/dds/convert.hpp"
 #include "run_record.hpp"
@@ -68,6 +69,7 @@ int run_pipeline(const RunOptions& o) {
   require_implemented_mode(o.mode);
   const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
   if (o.features) ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
+  check_config_dir(o.config_dir);
   const fs::path out = o.out;
   fs::create_directories(out);
   const int domain = pick_domain(o.domain);
@@ -112,13 +114,14 @@ int run_pipeline(const RunOptions& o) {
     if (s == "estimator") {
       args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
     }
+    for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
     supervisor.start({s, "twinslam-" + s, args, env, {}, false});
   }
   const auto ready_deadline = std::chrono::steady_clock::now() +
                               std::chrono::milliseconds(static_cast<long>(o.start_timeout_s * 1000));
   while (!monitor.all_ready(services)) {
     if (supervisor.watch(std::chrono::milliseconds(20)) != process::Supervisor::Event::Timeout) {
-      throw std::runtime_error("a service stopped during start-up (see " + (out / "logs").string() + ")");
+      throw_startup_failure(supervisor.stop_all(), out / "logs");  // exit 2 with its line if its input was bad
     }
     if (std::chrono::steady_clock::now() > ready_deadline) throw std::runtime_error("services not ready in time");
   }
@@ -132,6 +135,7 @@ int run_pipeline(const RunOptions& o) {
                                        "imu=" + std::to_string(imu_readers) + ",image=2,gnss=" +
                                            std::to_string(dataset.gnss.empty() ? 0 : gnss_readers)};
   if (o.features) ingest_args.push_back("--features");
+  for (auto& a : config_args(o.config_dir, "ingest")) ingest_args.push_back(std::move(a));
   // Lockstep: the next frame goes out once every stage has finished the previous one.
   if (!o.realtime) ingest_args.insert(ingest_args.end(), {"--ack-from", o.features ? "estimator" : "tracking,estimator"});
   supervisor.start({"ingest", "twinslam-ingest", ingest_args, env, {}, true});
@@ -160,6 +164,8 @@ int run_pipeline(const RunOptions& o) {
                      {"frames_processed", frames},
                      {"status", status},
                      {"replay", o.realtime ? "realtime" : "max"},
+                     {"config_dir", o.config_dir.empty() ? nlohmann::json()  // null: every service on its defaults
+                                                         : nlohmann::json(fs::absolute(o.config_dir).string())},
                      {"domain", domain},
                      {"messages", messages},
                      {"services", svc},
@@ -195,6 +201,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--vehicle", o->vehicle, "Vehicle id")->capture_default_str();
   cmd->add_option("--domain", o->domain, "DDS domain (default: $TWINSLAM_DOMAIN, else a private one)");
   cmd->add_option("--start-timeout", o->start_timeout_s, "Seconds for the services to get ready")->capture_default_str();
+  cmd->add_option("--config-dir", o->config_dir, "Folder of <service>.yaml configs (e.g. deploy/config)");
   cmd->callback([o, &exit_code] { exit_code = run_pipeline(*o); });
 }
 

@@ -6,6 +6,7 @@ namespace twinslam::cli {
 
 struct RunOptions {
   std::string dataset, mode = "vio", out, vehicle = "uav0";
+  std::string config_dir;  // --config-dir: DIR/<service>.yaml is passed as --config where it exists; empty: none
   bool realtime = false, max = false, features = false, quiet = false;
   int domain = -1;
   double start_timeout_s = 60;

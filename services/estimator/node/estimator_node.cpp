@@ -122,7 +122,7 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
     counters_.add("odometry_out");
     if (e.init_timed_out && counters_.get("init_timeout_reported") == 0) {
       counters_.add("init_timeout_reported");
-      spdlog::warn("no rest seen within the initialization timeout; motion-based initialization is not implemented");
+      spdlog::warn("neither rest nor a motion initialization succeeded within init_timeout_s");
     }
     if (const auto& map = estimator_.local_map()) {
       msg::LocalMap lm;

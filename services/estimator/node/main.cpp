@@ -1,34 +1,43 @@
 // twinslam-estimator: sliding-window visual-inertial estimator (features + IMU in, odometry and local maps out).
+#include <spdlog/spdlog.h>
+
+#include "estimator_config.hpp"
 #include "estimator_node.hpp"
 #include "twinslam/camera/sensor_yaml.hpp"
 #include "twinslam/dds/service_main.hpp"
+#include "twinslam/estimator/sliding_window_config_yaml.hpp"
 
 int main(int argc, char** argv) {
+  namespace est = twinslam::estimator;
   CLI::App app{"twinslam estimator service: sliding-window visual-inertial estimator (features + IMU in, odometry and "
                "local maps out)"};
   twinslam::dds::ServiceOptions service;
   twinslam::dds::add_service_options(app, service);
-  std::string camera_file, imu_file;
+  std::string camera_file, imu_file, config_file;
   int window = 0;
   app.add_option("--camera", camera_file, "Camera calibration (EuRoC cam0/sensor.yaml: T_BS and fu are used)")
       ->required();
   app.add_option("--imu", imu_file, "IMU noise (EuRoC imu0/sensor.yaml)")->required();
-  app.add_option("--window", window, "Keyframes in the sliding window (default 8)");
+  app.add_option("--config", config_file, "Estimator config YAML (deploy/config/estimator.yaml lists every key)");
+  app.add_option("--window", window, "Keyframes in the sliding window (default 8; wins over --config)");
   return twinslam::dds::service_main("estimator", app, service, argc, argv, [&] {
-    twinslam::estimator::EstimatorNodeOptions options;
+    est::EstimatorServiceConfig config;
+    if (!config_file.empty()) {
+      config = est::load_estimator_service_config(config_file);
+      spdlog::info("config {}: {}", config_file, est::changed_from_defaults(config));
+    }
     const twinslam::CameraConfig camera = twinslam::read_camera_sensor_yaml(camera_file);
-    options.estimator.T_BC = camera.T_BC;
-    options.estimator.focal_px = camera.intrinsics.fu;
-    options.estimator.imu = twinslam::estimator::load_imu_noise(imu_file);
-    if (window > 0) options.estimator.window_keyframes = window;
-    // Lockstep replay (--max) promises repeatable trajectories (CONTRACTS.md: two runs within 1 mm); a wall-clock
-    // solver cap would make the result depend on the machine's load, so there only the iteration count bounds it.
-    if (!service.realtime) options.estimator.max_solver_time_s = 1.0;
-    options.estimator.validate();
+    config.options.estimator.T_BC = camera.T_BC;
+    config.options.estimator.focal_px = camera.intrinsics.fu;
+    config.options.estimator.imu = est::load_imu_noise(imu_file);
+    if (window > 0) config.options.estimator.window_keyframes = window;
+    // Lockstep replay (--max): node.lockstep_max_solver_time_s replaces the wall-clock cap (see estimator_config.hpp).
+    const est::EstimatorNodeOptions options = config.for_replay(!service.realtime);
+    est::validate_estimator_config(options.estimator, config_file.empty() ? "command line" : config_file);
     twinslam::dds::Node node(service.node);
     twinslam::dds::Counters counters;
     twinslam::dds::HeartbeatPublisher heartbeat(node, counters);
-    twinslam::estimator::EstimatorNode estimator(node, counters, options);
+    est::EstimatorNode estimator(node, counters, options);
     return twinslam::dds::serve_until_shutdown(heartbeat, node);
   });
 }

@@ -16,11 +16,13 @@ int main(int argc, char** argv) {
                                      "names twin_dir, and wins over it");
   app.add_option("--config", config_file, "Tiles config YAML: window_m, cache_tiles, twin_dir, max_tiles_on_wire");
   auto* idle = app.add_flag("--no-twin", no_twin, "Serve no twin, only count the inputs (deployment without a store)");
-  idle->excludes(app.get_option("--twin"))->excludes(app.get_option("--config"));
+  idle->excludes(app.get_option("--twin"));
   return dds::service_main("tiles", app, service, argc, argv, [&] {
     dds::Node node(service.node);  // first, so a bad QoS file or profile is reported as such whatever else is missing
     dds::Counters counters;
     if (no_twin) {
+      // A --config is still read (keys and types), so a bad file fails now and not when a twin arrives.
+      if (!config_file.empty()) twinslam::tiles::load_tiles_config(config_file);
       dds::HeartbeatPublisher heartbeat(node, counters);
       twinslam::tiles::wire_idle_inputs(node, counters);
       spdlog::warn("--no-twin: no tiles will be streamed");

@@ -7,6 +7,8 @@
 //   max_tiles_on_wire: 4096
 #include <string>
 
+#include "twinslam/core/yaml_fields.hpp"
+
 namespace twinslam::tiles {
 
 struct TilesConfig {
@@ -18,6 +20,9 @@ struct TilesConfig {
   // Throws twinslam::InputError "SOURCE: tiles key 'K': what" naming the first bad field.
   void validate(const std::string& source = "TilesConfig") const;
 };
+
+// Binds every key of the YAML form to `config` (one line per field).
+void bind_tiles_config(yaml::Fields& fields, TilesConfig& config);
 
 // Parses YAML text (`file` only names it in messages) over `base`; unknown keys and wrong types throw InputError
 // naming the file, line and key. Not validated: the caller applies its overrides (e.g. --twin) and calls validate().

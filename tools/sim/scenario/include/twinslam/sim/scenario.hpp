@@ -1,5 +1,5 @@
 #pragma once
-// The simulator's scenario: every key of the scenario file in ../shared/CONTRACTS.md, with defaults and units.
+// The simulator's scenario: every key of the scenario file in docs/CONTRACTS.md, with defaults and units.
 // Parsing, validation and the built-in scenarios (tiny, city-loops, city-survey): scenario_io.hpp. Every other
 // simulator module takes its own part of this struct.
 #include <array>

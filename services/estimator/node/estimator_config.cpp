@@ -1,0 +1,52 @@
+#include "estimator_config.hpp"
+
+#include <cmath>
+
+#include "twinslam/core/error.hpp"
+#include "twinslam/core/yaml_fields.hpp"
+#include "twinslam/estimator/sliding_window_config_yaml.hpp"
+
+namespace twinslam::estimator {
+
+EstimatorNodeOptions EstimatorServiceConfig::for_replay(bool lockstep) const {
+  EstimatorNodeOptions o = options;
+  if (lockstep) o.estimator.max_solver_time_s = lockstep_max_solver_time_s;
+  return o;
+}
+
+void bind_estimator_service_config(yaml::Fields& fields, EstimatorServiceConfig& config) {
+  bind_sliding_window_config(fields, config.options.estimator);
+  fields.section("node")
+      .milliseconds("imu_wait_ms", config.options.imu_wait)
+      .number("lockstep_max_solver_time_s", config.lockstep_max_solver_time_s, "s");
+}
+
+std::string changed_from_defaults(const EstimatorServiceConfig& config) {
+  EstimatorServiceConfig now = config, defaults;
+  yaml::Fields a("estimator"), b("estimator");
+  bind_estimator_service_config(a, now);
+  bind_estimator_service_config(b, defaults);
+  return yaml::changed_values(a.values(), b.values());
+}
+
+EstimatorServiceConfig parse_estimator_service_config(const std::string& text, const std::string& file,
+                                                      const EstimatorServiceConfig& base) {
+  EstimatorServiceConfig c = base;
+  yaml::Fields fields("estimator");
+  bind_estimator_service_config(fields, c);
+  fields.parse(text, file);
+  validate_estimator_config(c.options.estimator, file);
+  if (c.options.imu_wait.count() < 0) {
+    throw InputError(where(file, 0, "estimator key 'node.imu_wait_ms': must be >= 0"));
+  }
+  if (!(c.lockstep_max_solver_time_s > 0.0)) {
+    throw InputError(where(file, 0, "estimator key 'node.lockstep_max_solver_time_s': must be > 0"));
+  }
+  return c;
+}
+
+EstimatorServiceConfig load_estimator_service_config(const std::string& path, const EstimatorServiceConfig& base) {
+  return parse_estimator_service_config(yaml::read_text_file(path), path, base);
+}
+
+}  // namespace twinslam::estimator

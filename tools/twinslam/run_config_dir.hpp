@@ -1,0 +1,24 @@
+#pragma once
+// `twinslam run/bench --config-dir DIR`: each service it starts gets `--config DIR/<service>.yaml` when that file
+// exists (deploy/config/ holds one commented default per service).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "twinslam/process/supervisor.hpp"
+
+namespace twinslam::cli {
+
+// Before anything starts: InputError "DIR: config directory does not exist" (or "is not a directory"). The files run
+// itself can read (ingest.yaml) are loaded here, so their errors come before any service starts. Empty dir: nothing.
+void check_config_dir(const std::string& dir);
+
+// {"--config", "DIR/<service>.yaml"} when that file exists, else nothing (the service runs on its defaults).
+std::vector<std::string> config_args(const std::string& dir, const std::string& service);
+
+// A service stopped during start-up. If one exited with code 2 (bad input: its --config, its calibration), throws an
+// InputError with that service's own one-line message from its log; otherwise a runtime_error pointing at the logs.
+[[noreturn]] void throw_startup_failure(const std::vector<process::ChildResult>& results,
+                                        const std::filesystem::path& log_dir);
+
+}  // namespace twinslam::cli
