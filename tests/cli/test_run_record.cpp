@@ -35,6 +35,10 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   r.accepted = true;
   r.info_eigenvalues << 1, 2, 3, 4, 5, 6;
   rec.registration(r);
+  cli::RegistrationRecord rejected;
+  rejected.stamp_ns = 1'200'000'000LL;
+  rejected.reason = "rmse 0.41 m > 0.3 m, 12 inliers";  // a comma would split the field: written as ';'
+  rec.registration(rejected);
   const fs::path dir = fs::temp_directory_path() / ("twinslam_runrec_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const auto files = rec.write(dir);
@@ -59,13 +63,20 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   });
   EXPECT_EQ(rows, 6u);  // every frame has a timing row, estimated or not
   std::size_t regs = 0;
-  read_csv(dir / "registrations.csv", 18, [&](const CsvRow& row) {
-    if (row.line == 1) return;
-    EXPECT_EQ(row.cells[1], "1");
-    EXPECT_EQ(row.cells[11], "6");
-    ++regs;
+  read_csv(dir / "registrations.csv", 20, [&](const CsvRow& row) {
+    if (row.line == 1) {
+      EXPECT_EQ(row.cells[19], "reason");
+      return;
+    }
+    if (regs++ == 0) {
+      EXPECT_EQ(row.cells[1], "1");
+      EXPECT_EQ(row.cells[11], "6");
+    } else {
+      EXPECT_EQ(row.cells[1], "0");
+      EXPECT_EQ(row.cells[19], "rmse 0.41 m > 0.3 m; 12 inliers");
+    }
   });
-  EXPECT_EQ(regs, 1u);
+  EXPECT_EQ(regs, 2u);
   fs::remove_all(dir);
 }
 

@@ -2,6 +2,7 @@
 // The services are separate processes on a private DDS domain (so runs and tests never hear each other); this
 // process records every topic reliably, waits for ingest to finish the dataset, stops the services, and writes RUN/.
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -15,6 +16,7 @@
 
 #include "modes.hpp"
 #include "monitor.hpp"
+#include "dataset_twin.hpp"
 #include "run_config_dir.hpp"
 #include "run_pipeline.hpp"
 #include "twinslam/dds/convert.hpp"
@@ -34,21 +36,25 @@ bool uses_twin(const std::string& mode) { return mode.rfind("vio-twin", 0) == 0;
 
 OdometryRecord to_record(const msg::Odometry& m) {
   const bool estimated = m.status() == msg::ODOM_TRACKING || m.status() == msg::ODOM_ALIGNED;
-  return {m.stamp_ns(), dds::from_msg(m.T_WB()), dds::from_msg(m.T_LB()), m.estimator_ms(), estimated};
+  return {m.stamp_ns(), dds::from_msg(m.T_WB()), dds::from_msg(m.T_LB()), m.estimator_ms(), estimated,
+          m.status() == msg::ODOM_ALIGNED};
 }
 
 RegistrationRecord to_record(const msg::Registration& m) {
   RegistrationRecord r;
   r.stamp_ns = m.keyframe_stamp_ns();
   r.accepted = m.status() == msg::REG_ACCEPTED;
+  r.reason = r.accepted ? "accepted" : (m.reason().empty() ? "rejected" : m.reason());
   r.rmse_m = m.rmse_m();
   r.inliers = m.inliers();
   r.fitness = m.fitness();
   r.time_ms = m.compute_ms();
-  const Eigen::Matrix<double, 6, 6, Eigen::RowMajor> info(m.information().data());
-  r.info_eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(info).eigenvalues();
+  r.latency_ms = m.latency_ms();
+  for (int i = 0; i < 6; ++i) r.info_eigenvalues[i] = m.information_eigenvalues()[i];
+  // The correction of the keyframe's pose: its position moves by dT c - c (c = pivot), its attitude by dR.
   const Eigen::Isometry3d T = dds::from_msg(m.correction_W());
-  r.dp_m = T.translation();
+  const Eigen::Vector3d c = dds::from_msg(m.pivot_W());
+  r.dp_m = T * c - c;
   // Roll, pitch, yaw (ZYX) of the correction.
   const Eigen::Matrix3d R = T.linear();
   r.drpy_deg = Eigen::Vector3d(std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0)),
@@ -70,6 +76,17 @@ int run_pipeline(const RunOptions& o) {
   const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
   if (o.features) ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
   check_config_dir(o.config_dir);
+  // Twin modes: W's origin and the twin store (built once per twin content), and how T_WL is first found.
+  std::optional<DatasetGeo> geo;
+  fs::path twin_store;
+  if (uses_twin(o.mode)) {
+    geo = read_dataset_geo(dataset.root);
+    if (dataset.gnss.empty() && o.initial_pose.empty()) {
+      throw UsageError("mode '" + o.mode + "': the dataset has no GNSS (mav0/gnss0) for the initial alignment; give "
+                       "--initial-pose \"E N U YAW_DEG\"");
+    }
+    twin_store = dataset_twin_store(*geo, o.quiet);
+  }
   const fs::path out = o.out;
   fs::create_directories(out);
   const int domain = pick_domain(o.domain);
@@ -109,10 +126,20 @@ int run_pipeline(const RunOptions& o) {
     std::vector<std::string> args{"--vehicle", o.vehicle, replay};
     const std::string camera = (dataset.root / "mav0/cam0/sensor.yaml").string();
     if (s == "tracking") args.insert(args.end(), {"--camera", camera});
-    // The dataset's twin is a PLY, not a tile store (`twinslam twin build`): tiles runs idle until run builds one.
-    if (s == "tiles") args.push_back("--no-twin");
+    if (s == "tiles") args.insert(args.end(), {"--twin", twin_store.string()});
+    if (s == "registration") args.insert(args.end(), {"--weights", o.weights});
     if (s == "estimator") {
       args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
+      if (geo) {
+        args.insert(args.end(), {"--fuse-registrations", "--origin", origin_text(geo->origin)});
+        // Lockstep: each registration is fused at the same frame in every run, whatever the edge's speed.
+        if (!o.realtime) args.push_back("--await-registration");
+        if (!o.initial_pose.empty()) {
+          args.insert(args.end(), {"--initial-pose", o.initial_pose});
+        } else {
+          args.push_back("--align-gnss");
+        }
+      }
     }
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
     supervisor.start({s, "twinslam-" + s, args, env, {}, false});
@@ -170,6 +197,16 @@ int run_pipeline(const RunOptions& o) {
                      {"messages", messages},
                      {"services", svc},
                      {"poses", record.odometry_count()}};
+  // When T_WB entered W (null: never): world-frame evaluations start there (twinslam bench).
+  const auto aligned = record.first_aligned_stamp_ns(), first = record.first_estimate_stamp_ns();
+  run["aligned_from_stamp_ns"] = aligned ? nlohmann::json(*aligned) : nlohmann::json();
+  run["aligned_after_s"] = aligned && first ? nlohmann::json(1e-9 * static_cast<double>(*aligned - *first))
+                                            : nlohmann::json();
+  if (geo) {
+    run["twin"] = {{"store", twin_store.string()},
+                   {"weights", o.weights},
+                   {"initial_alignment", o.initial_pose.empty() ? std::string("gnss") : "pose " + o.initial_pose}};
+  }
   record.write(out);
   std::ofstream(out / "run.json") << run.dump(2) << '\n';
 
@@ -201,6 +238,11 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--vehicle", o->vehicle, "Vehicle id")->capture_default_str();
   cmd->add_option("--domain", o->domain, "DDS domain (default: $TWINSLAM_DOMAIN, else a private one)");
   cmd->add_option("--start-timeout", o->start_timeout_s, "Seconds for the services to get ready")->capture_default_str();
+  cmd->add_option("--weights", o->weights, "Twin modes: registration information weighting")
+      ->check(CLI::IsMember({"paper", "adaptive", "fixed"}))
+      ->capture_default_str();
+  cmd->add_option("--initial-pose", o->initial_pose,
+                  "Twin modes without GNSS: \"E N U YAW_DEG\", the body's pose in W at the first estimate");
   cmd->add_option("--config-dir", o->config_dir, "Folder of <service>.yaml configs (e.g. deploy/config)");
   cmd->callback([o, &exit_code] { exit_code = run_pipeline(*o); });
 }

@@ -7,6 +7,8 @@ namespace twinslam::cli {
 struct RunOptions {
   std::string dataset, mode = "vio", out, vehicle = "uav0";
   std::string config_dir;  // --config-dir: DIR/<service>.yaml is passed as --config where it exists; empty: none
+  std::string weights = "adaptive";  // twin modes: registration information weighting (paper | adaptive | fixed)
+  std::string initial_pose;          // twin modes without GNSS: "E N U YAW_DEG" of the body at the first estimate
   bool realtime = false, max = false, features = false, quiet = false;
   int domain = -1;
   double start_timeout_s = 60;

@@ -36,6 +36,22 @@ std::size_t RunRecord::odometry_count() const {
   return odometry_.size();
 }
 
+std::optional<std::int64_t> RunRecord::first_aligned_stamp_ns() const {
+  std::lock_guard lock(mutex_);
+  for (const auto& [o, _] : odometry_) {
+    if (o.estimated && o.aligned) return o.stamp_ns;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::int64_t> RunRecord::first_estimate_stamp_ns() const {
+  std::lock_guard lock(mutex_);
+  for (const auto& [o, _] : odometry_) {
+    if (o.estimated) return o.stamp_ns;
+  }
+  return std::nullopt;
+}
+
 std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path& dir) const {
   std::lock_guard lock(mutex_);
   std::vector<std::filesystem::path> written;
@@ -72,14 +88,17 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
     std::ofstream f(dir / "registrations.csv");
     if (!f) throw InputError((dir / "registrations.csv").string() + ": cannot write");
     f << "stamp_ns,accepted,rmse_m,inliers,fitness,time_ms,ev1,ev2,ev3,ev4,ev5,ev6,dx_m,dy_m,dz_m,droll_deg,"
-         "dpitch_deg,dyaw_deg\n";
+         "dpitch_deg,dyaw_deg,latency_ms,reason\n";
     for (const auto& r : registrations_) {
       f << r.stamp_ns << ',' << (r.accepted ? 1 : 0) << ',' << r.rmse_m << ',' << r.inliers << ',' << r.fitness << ','
         << r.time_ms;
       for (int i = 0; i < 6; ++i) f << ',' << r.info_eigenvalues[i];
       for (int i = 0; i < 3; ++i) f << ',' << r.dp_m[i];
       for (int i = 0; i < 3; ++i) f << ',' << r.drpy_deg[i];
-      f << '\n';
+      std::string reason = r.reason;
+      std::replace(reason.begin(), reason.end(), ',', ';');  // one CSV field
+      std::replace(reason.begin(), reason.end(), '\n', ' ');
+      f << ',' << r.latency_ms << ',' << reason << '\n';
     }
     written.push_back(dir / "registrations.csv");
   }

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -18,6 +20,7 @@ struct OdometryRecord {
   Eigen::Isometry3d T_LB = Eigen::Isometry3d::Identity();
   double estimator_ms = 0;
   bool estimated = true;  // false while initializing: the pose is a placeholder, kept out of the trajectories
+  bool aligned = false;   // ODOM_ALIGNED: T_WB is in the world frame W
 };
 
 struct RegistrationRecord {
@@ -28,6 +31,8 @@ struct RegistrationRecord {
   Eigen::Matrix<double, 6, 1> info_eigenvalues = Eigen::Matrix<double, 6, 1>::Zero();
   Eigen::Vector3d dp_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d drpy_deg = Eigen::Vector3d::Zero();  // roll, pitch, yaw of the correction [deg]
+  double latency_ms = 0;  // LocalMap arrival -> Registration publication on the registration host [ms]
+  std::string reason;     // "accepted", or why it was rejected (one line, no commas written)
 };
 
 class RunRecord {
@@ -39,6 +44,9 @@ class RunRecord {
   void registration(const RegistrationRecord& r);
 
   std::size_t odometry_count() const;
+  // Stamp of the first pose in W (ODOM_ALIGNED) and of the first estimated pose, if any.
+  std::optional<std::int64_t> first_aligned_stamp_ns() const;
+  std::optional<std::int64_t> first_estimate_stamp_ns() const;
   // Writes the four files into `dir` (trajectories only when there is odometry). Returns the files written.
   std::vector<std::filesystem::path> write(const std::filesystem::path& dir) const;
 

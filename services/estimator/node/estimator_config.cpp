@@ -14,11 +14,33 @@ EstimatorNodeOptions EstimatorServiceConfig::for_replay(bool lockstep) const {
   return o;
 }
 
+namespace {
+
+void bind_fusion_fields(yaml::Fields& fields, GlobalFusionConfig& f) {
+  fields.section("fusion")
+      .flag("fuse_registrations", f.fuse_registrations)
+      .flag("align_from_gnss", f.align_from_gnss)
+      .number("realign_after_s", f.realign_after_s, "s")
+      .number("initial_pose_position_sigma_m", f.initial_pose_position_sigma_m, "m")
+      .number("initial_pose_yaw_sigma_deg", f.initial_pose_yaw_sigma_deg, "deg")
+      .number("gnss_alignment_sigma_scale", f.gnss_alignment_sigma_scale)
+      .number("aligner_converged_yaw_sigma_deg", f.aligner.converged_yaw_sigma_deg, "deg")
+      .integer("aligner_min_pairs", f.aligner.min_pairs)
+      .number("aligner_min_span_m", f.aligner.min_span_m, "m")
+      .count("aligner_max_pairs", f.aligner.max_pairs)
+      .number("registration_huber_delta", f.registration.huber_delta)
+      .number("registration_max_reattach_s", f.registration.max_reattach_s, "s");
+}
+
+}  // namespace
+
 void bind_estimator_service_config(yaml::Fields& fields, EstimatorServiceConfig& config) {
   bind_sliding_window_config(fields, config.options.estimator);
   fields.section("node")
       .milliseconds("imu_wait_ms", config.options.imu_wait)
-      .number("lockstep_max_solver_time_s", config.lockstep_max_solver_time_s, "s");
+      .number("lockstep_max_solver_time_s", config.lockstep_max_solver_time_s, "s")
+      .milliseconds("registration_wait_ms", config.options.registration_wait);
+  bind_fusion_fields(fields, config.options.fusion);
 }
 
 std::string changed_from_defaults(const EstimatorServiceConfig& config) {
@@ -38,6 +60,11 @@ EstimatorServiceConfig parse_estimator_service_config(const std::string& text, c
   validate_estimator_config(c.options.estimator, file);
   if (c.options.imu_wait.count() < 0) {
     throw InputError(where(file, 0, "estimator key 'node.imu_wait_ms': must be >= 0"));
+  }
+  try {
+    c.options.fusion.validate();
+  } catch (const InputError& e) {
+    throw InputError(where(file, 0, std::string("estimator key 'fusion': ") + e.what()));
   }
   if (!(c.lockstep_max_solver_time_s > 0.0)) {
     throw InputError(where(file, 0, "estimator key 'node.lockstep_max_solver_time_s': must be > 0"));

@@ -61,6 +61,25 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
   });
 }
 
+void EstimatorNode::report_fusion() {
+  // Heartbeat counters follow the fusion's own counts (added as deltas: Counters only adds).
+  const GlobalFusionCounts& f = fusion_.counts();
+  const MapRegistrationCounts& r = fusion_.registration_counts();
+  const std::pair<const char*, unsigned long long> now[] = {
+      {"alignments", f.alignments},
+      {"registrations_fused", r.attached + r.reattached},
+      {"registrations_reattached", r.reattached},
+      {"registrations_unmatched", r.unmatched},
+      {"registrations_before_alignment", f.registrations_before_alignment},
+      {"registrations_unknown_keyframe", f.registrations_unknown_keyframe},
+      {"registration_wait_timeouts", worker_.expectations_timed_out()}};
+  for (const auto& [name, value] : now) {
+    unsigned long long& last = reported_[name];
+    if (value > last) counters_.add(name, value - last);
+    last = value;
+  }
+}
+
 void EstimatorNode::apply(const GlobalInput& input) {
   // On the worker thread, in stamp order relative to the frames.
   if (const auto* r = std::get_if<msg::Registration>(&input)) {
@@ -103,6 +122,7 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
   try {
     const FrameEstimate e = estimator_.add_frame(m.stamp_ns(), features);
     fusion_.after_frame(e, estimator_.local_map());
+    report_fusion();
     msg::Odometry odom;
     odom.vehicle_id(m.vehicle_id());
     odom.stamp_ns(m.stamp_ns());

@@ -7,6 +7,8 @@
 // SensorWorker, in sensor-time order relative to the frames (sensor_worker.hpp), and go to GlobalFusion
 // (global_fusion.hpp): GNSS for the initial alignment T_WL (eq. 11), accepted registrations as map factors (eq. 7).
 #include <chrono>
+#include <map>
+#include <string>
 #include <memory>
 #include <optional>
 #include <variant>
@@ -45,6 +47,7 @@ class EstimatorNode {
   void handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu, std::vector<GlobalInput>&& global);
   void apply(const GlobalInput& input);
   void process(const msg::FeatureFrame& frame);
+  void report_fusion();
 
   dds::Node& node_;
   dds::Counters& counters_;
@@ -52,6 +55,7 @@ class EstimatorNode {
   GlobalFusion fusion_;               // likewise
   std::unique_ptr<twin::EnuFrame> enu_;  // lat/lon/alt -> W (null without an origin)
   bool await_registration_;
+  std::map<std::string, unsigned long long> reported_;  // fusion counts already in the heartbeat
   std::chrono::milliseconds registration_wait_;
   dds::Writer<msg::Odometry> odometry_;
   dds::Writer<msg::LocalMap> local_map_;

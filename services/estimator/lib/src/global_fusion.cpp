@@ -77,6 +77,11 @@ void GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted
                                    const Eigen::Matrix<double, 6, 6>& information) {
   ++counts_.registrations_in;
   if (!accepted || !config_.fuse_registrations) return;
+  if (!aligned_) {
+    // Computed against a T_WL nobody had aligned yet (the identity guess): where its ICP converged means nothing.
+    ++counts_.registrations_before_alignment;
+    return;
+  }
   const auto it = published_.find(keyframe_stamp_ns);
   if (it == published_.end()) {
     ++counts_.registrations_unknown_keyframe;  // not a LocalMap this estimator published (or too old)

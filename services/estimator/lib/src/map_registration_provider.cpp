@@ -4,6 +4,7 @@
 
 #include "twinslam/core/error.hpp"
 #include "twinslam/estimator/imu_state.hpp"
+#include "twinslam/estimator/landmark.hpp"
 #include "twinslam/estimator/world_alignment.hpp"
 #include "twinslam/geometry/so3.hpp"
 

@@ -39,7 +39,7 @@ struct InitialPose {
 
 struct GlobalFusionCounts {
   unsigned long long gnss_in = 0, gnss_paired = 0, alignments = 0, registrations_in = 0, registrations_accepted = 0,
-                     registrations_unknown_keyframe = 0;
+                     registrations_unknown_keyframe = 0, registrations_before_alignment = 0;
 };
 
 class GlobalFusion {
@@ -73,6 +73,7 @@ class GlobalFusion {
   std::map<std::int64_t, std::pair<Eigen::Isometry3d, Eigen::Isometry3d>> published_;  // stamp -> (T_LB, T_WL)
   std::int64_t last_accepted_ns_ = -1;  // last accepted registration (or alignment) [sensor time]
   bool aligned_ = false;
+  GlobalFusionCounts counts_;
 };
 
 }  // namespace twinslam::estimator

@@ -14,10 +14,12 @@
 namespace twinslam::estimator {
 
 struct WorldAlignerConfig {
-  double converged_yaw_sigma_deg = 1.0;  // heading sigma below which the alignment is used [deg]
+  // Heading sigma below which the alignment is used [deg]. Registrations refine T_WL afterwards, so this only has to
+  // bring the twin within the ICP gate: 3 deg moves a landmark 30 m away by 1.6 m (gate 3 m).
+  double converged_yaw_sigma_deg = 3.0;
   int min_pairs = 10;                    // at least this many pairs [1]
   double min_span_m = 5.0;               // horizontal extent of the p_L's (max distance from their mean) [m]
-  std::size_t max_pairs = 600;           // oldest dropped beyond this (a long outage re-alignment uses recent ones)
+  unsigned max_pairs = 600;              // oldest dropped beyond this (a long outage re-alignment uses recent ones)
   void validate() const;                 // throws twinslam::InputError naming the field
 };
 

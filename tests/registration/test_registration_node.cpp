@@ -1,0 +1,158 @@
+// The registration service over DDS in one process (private domain): a RegistrationNode fed MapTiles of a synthetic
+// city (Draco points, as the tiles service sends them) and a LocalMap whose landmarks were seen through a wrong T_WL
+// answers with an accepted Registration whose correction undoes the error; a cloud far from every tile is rejected
+// with REG_REJECTED_NO_MAP and a reason. Also WindowedTwin: only tiles inside a vehicle's window are indexed, and
+// the index then answers like one built from scratch on those tiles.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <atomic>
+#include <mutex>
+
+#include "registration_node.hpp"
+#include "synthetic_twin.hpp"
+#include "twinslam/dds/convert.hpp"
+#include "twinslam/twin/store.hpp"
+#include "wait_for.hpp"
+
+namespace twinslam::registration {
+namespace {
+
+using namespace std::chrono_literals;
+
+std::vector<std::uint8_t> encode(const test::PointSet& t) {
+  twin::Mesh m;
+  m.p_W = t.p_W;
+  m.n_W = t.n_W;
+  return twin::encode_points(m, twin::StoreConfig{});
+}
+
+Eigen::AlignedBox3d bounds(const test::PointSet& t) {
+  Eigen::AlignedBox3d b;
+  for (const auto& p : t.p_W) b.extend(p);
+  return b;
+}
+
+TEST(WindowedTwin, IndexesOnlyTheTilesNearAVehicleAndMatchesAFreshIndex) {
+  const auto tiles = test::split_tiles(test::sample_grid(test::city_surfaces(), 1.0));
+  WindowedTwin twin(50.0, 60.0);  // +-30 m around the vehicle
+  for (const auto& [key, t] : tiles) twin.add_tile(key, bounds(t), encode(t));
+  const Eigen::Vector3d at = test::kCentre + Eigen::Vector3d(-35, -35, 5);
+  const auto stats = twin.update("uav0", at);
+  EXPECT_GT(stats.added, 0u);
+  EXPECT_LT(twin.index().tile_count(), tiles.size());
+  // A fresh index on exactly the tiles whose content lies within 30 m (square) of the vehicle.
+  TwinTileIndex fresh(50.0);
+  for (const auto& [key, t] : tiles) {
+    const Eigen::AlignedBox3d b = bounds(t);
+    const double dx = std::max({b.min().x() - at.x(), 0.0, at.x() - b.max().x()});
+    const double dy = std::max({b.min().y() - at.y(), 0.0, at.y() - b.max().y()});
+    if (std::max(dx, dy) <= 30.0) fresh.add_tile(key, t.p_W, t.n_W);
+  }
+  EXPECT_EQ(twin.index().keys(), fresh.keys());
+  for (const auto& q : test::sample_noisy(test::city_surfaces(), 200, 0.3, 5)) {
+    const auto a = twin.index().nearest(q, 2.0), b = fresh.nearest(q, 2.0);
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (a) EXPECT_NEAR(a->distance_m, b->distance_m, 1e-4);  // Draco's 20-bit positions: < 0.1 mm
+  }
+  // The vehicle moves away: its old tiles leave the index, the new ones come in.
+  const auto moved = twin.update("uav0", test::kCentre + Eigen::Vector3d(40, 40, 5));
+  EXPECT_GT(moved.removed, 0u);
+  EXPECT_GT(moved.added, 0u);
+  EXPECT_FALSE(twin.covers(at, 5.0));
+  EXPECT_EQ(twin.stored_tiles(), tiles.size());  // compressed tiles are kept for a return
+}
+
+class RegistrationNodeTest : public ::testing::Test {
+ protected:
+  static dds::NodeConfig config(const std::string& service) {
+    dds::NodeConfig c;
+    c.service = service;
+    c.domain = 140 + static_cast<int>(::getpid() % 40);
+    return c;
+  }
+};
+
+TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlignmentError) {
+  dds::Node service(config("registration"));
+  dds::Counters counters;
+  RegistrationNodeOptions options;
+  RegistrationNode node(service, counters, options);
+
+  dds::Node peer(config("test"));
+  auto tiles_out = peer.writer<msg::MapTile>(dds::topics::kMapTile);
+  auto maps_out = peer.writer<msg::LocalMap>(dds::topics::kLocalMap);
+  std::mutex m;
+  std::vector<msg::Registration> got;
+  peer.subscribe<msg::Registration>(dds::topics::kRegistration, [&](const msg::Registration& r) {
+    std::lock_guard lock(m);
+    got.push_back(r);
+  });
+  ASSERT_TRUE(testing::wait_for([&] { return tiles_out.matched_readers() > 0 && maps_out.matched_readers() > 0; }, 5s));
+  for (const auto& [key, t] : test::split_tiles(test::sample_grid(test::city_surfaces(), 0.5))) {
+    msg::MapTile tile;
+    tile.tile_key("synthetic/" + key.str());
+    tile.twin_id("synthetic");
+    const Eigen::AlignedBox3d b = bounds(t);
+    for (int k = 0; k < 3; ++k) tile.bounds_W()[k] = b.min()[k], tile.bounds_W()[3 + k] = b.max()[k];
+    tile.points(static_cast<unsigned>(t.p_W.size()));
+    const auto bytes = encode(t);
+    tile.points_draco(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    tiles_out.publish(tile);
+  }
+  ASSERT_TRUE(testing::wait_for([&] { return counters.get("tiles_in") >= 9; }, 10s));
+
+  // 1 m / 3 deg off, about the keyframe body.
+  const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0, -45, 8);
+  const Eigen::Isometry3d error = test::offset_about(body, Eigen::Vector3d(0.2, 0.1, 1), 3.0, {0.6, -0.7, 0.4});
+  const SourceInput src = test::make_source(test::sample_noisy(test::city_surfaces(), 600, 0.1, 3), error, body);
+  msg::LocalMap lm;
+  lm.vehicle_id("uav7");
+  lm.keyframe_stamp_ns(123);
+  lm.T_LB(dds::to_msg(src.T_LB));
+  lm.T_WL(dds::to_msg(src.T_WL));
+  for (const auto& l : src.landmarks) {
+    msg::Landmark x;
+    x.p_L(dds::to_msg(l.p_L));
+    x.quality(1.0f);
+    lm.landmarks().push_back(x);
+  }
+  maps_out.publish(lm);
+  // And one far from every tile.
+  msg::LocalMap far = lm;
+  far.keyframe_stamp_ns(456);
+  far.vehicle_id("uav8");
+  Eigen::Isometry3d away = Eigen::Isometry3d::Identity();
+  away.translation() << 5000, 0, 0;
+  far.T_WL(dds::to_msg(away));
+  maps_out.publish(far);
+  ASSERT_TRUE(testing::wait_for([&] {
+    std::lock_guard lock(m);
+    return got.size() >= 2;
+  }, 20s));
+  std::lock_guard lock(m);
+  const auto& ok = got[0].vehicle_id() == "uav7" ? got[0] : got[1];
+  const auto& no = got[0].vehicle_id() == "uav7" ? got[1] : got[0];
+  EXPECT_EQ(ok.status(), msg::REG_ACCEPTED) << ok.reason();
+  EXPECT_EQ(ok.keyframe_stamp_ns(), 123);
+  const Eigen::Isometry3d residual = dds::from_msg(ok.correction_W()) * error;  // identity when exact
+  EXPECT_LT((residual * body - body).norm(), 0.05);
+  EXPECT_LT(Eigen::AngleAxisd(residual.linear()).angle() * 180 / M_PI, 0.2);
+  EXPECT_GT(ok.inliers(), 300u);
+  EXPECT_EQ(no.status(), msg::REG_REJECTED_NO_MAP);
+  EXPECT_FALSE(no.reason().empty());
+  EXPECT_EQ(counters.get("registrations_out"), 2u);
+}
+
+TEST(RegistrationNodeParts, TileKeysAndStatusesMap) {
+  EXPECT_EQ(parse_tile_key("delft/3_-2")->iy, -2);
+  EXPECT_EQ(parse_tile_key("12_7")->ix, 12);
+  EXPECT_FALSE(parse_tile_key("twin/3x2").has_value());
+  EXPECT_FALSE(parse_tile_key("twin/3_2junk").has_value());
+  EXPECT_EQ(to_msg(RegistrationStatus::kCorrectionTooLarge), msg::REG_REJECTED_CORRECTION);
+  EXPECT_EQ(to_msg(RegistrationStatus::kAccepted), msg::REG_ACCEPTED);
+}
+
+}  // namespace
+}  // namespace twinslam::registration
