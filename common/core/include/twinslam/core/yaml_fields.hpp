@@ -5,7 +5,8 @@
 // infinity throw twinslam::InputError, one line naming the file, the line and the key:
 //   "estimator.yaml:7: estimator key 'keyframe.min_tracked_ratio': expected a number"
 //   "tiles.yaml:1: tiles key 'window': unknown key (known: window_m, cache_tiles, twin_dir, max_tiles_on_wire)"
-// Range checks stay in each struct's validate(). No yaml-cpp and no service knowledge in this header.
+// Range checks stay in each struct's validate(). A table holds references to the members it binds: build it next to
+// the struct, use it, drop it. No yaml-cpp and no service knowledge in this header.
 #include <chrono>
 #include <functional>
 #include <memory>
