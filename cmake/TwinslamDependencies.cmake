@@ -1,4 +1,4 @@
-# All third-party packages come from Debian 12 (see ../shared/NOTES-dependencies.md for the measured names and pitfalls).
+# All third-party packages come from Debian 12, each found here with the workaround its package needs (comments below).
 # The list of Debian packages that provides them is in scripts/packages.txt; keep both in step.
 find_package(Threads REQUIRED)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
@@ -31,7 +31,7 @@ find_path(OSMIUM_INCLUDE_DIR osmium/osm.hpp REQUIRED)
 find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
 # PCL 1.13 for the registration library (KdTreeFLANN per twin tile, VoxelGrid, StatisticalOutlierRemoval, and
 # IterativeClosestPointWithNormals as the reference). PCL's config drags VTK, whose MPI targets fail in a C++-only
-# project (NOTES-dependencies pitfall 1): disable VTK first. PCL headers cost ~24 s and ~2 GB per translation unit
-# (pitfall 10): only .cpp files of services/registration/lib (and its tests/benchmark) include them.
+# project: disable VTK first. PCL headers cost ~24 s and ~2 GB per translation unit
+#: only .cpp files of services/registration/lib (and its tests/benchmark) include them.
 set(CMAKE_DISABLE_FIND_PACKAGE_VTK ON)
 find_package(PCL 1.13 REQUIRED COMPONENTS common kdtree search registration features filters io)

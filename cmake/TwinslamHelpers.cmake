@@ -1,4 +1,4 @@
-# Warnings for our own code only: GCC 12 -O3 reports false -Warray-bounds inside Eigen/PCL (pitfall 11), so no -Werror.
+# Warnings for our own code only: GCC 12 -O3 reports false -Warray-bounds inside Eigen/PCL, so no -Werror.
 function(twinslam_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wno-array-bounds)
 endfunction()

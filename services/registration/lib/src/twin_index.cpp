@@ -1,4 +1,4 @@
-// Per-tile KD-trees (PCL KdTreeFLANN). The only file of the index that includes PCL (pitfall 10: ~24 s per TU).
+// Per-tile KD-trees (PCL KdTreeFLANN). The only file of the index that includes PCL (~24 s per translation unit).
 #include "twinslam/registration/twin_index.hpp"
 
 #include <algorithm>

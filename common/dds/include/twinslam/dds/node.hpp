@@ -1,6 +1,6 @@
 #pragma once
 // One DDS participant per service process, and the typed writers/readers it owns.
-// A Node loads the QoS profile file before reading any QoS (pitfall 6), creates every entity from a named profile of
+// A Node loads the QoS profile file before reading any QoS, creates every entity from a named profile of
 // deploy/qos/twinslam.xml, and deletes everything in order in its destructor, which is what removes the process's
 // shared-memory files from /dev/shm.
 #include <atomic>
