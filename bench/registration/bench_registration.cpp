@@ -7,7 +7,8 @@
 // update (tiles entering the 150 m window are decoded from the store and indexed, leaving ones dropped), then
 // register_cloud (preprocess, ICP, information). A second child (`--serve DIR pcl N`) runs the paper code's recipe on
 // N of the same keyframes: +-350 m crop, KD-tree rebuilt per call, PCL IterativeClosestPointWithNormals, 25
-// iterations, 8 m max correspondence distance.
+// iterations, 8 m max correspondence distance. A third (`--serve DIR probe N`) compares the index's structure with a
+// voxel hash (index_probe.cpp).
 // Usage: bench_registration [--sizes 1000,5000] [--spacing M] [--keyframes K] [--pcl-keyframes N]
 #include <algorithm>
 #include <chrono>
@@ -110,8 +111,9 @@ double prepare(double size_m, double spacing_m, int keyframes, const fs::path& d
 struct Row {
   double size_m = 0, build_s = 0;
   std::size_t tiles = 0;
-  double ours[12] = {};  // see serve_ours
+  double ours[15] = {};  // see serve_ours
   double pcl[4] = {};    // see serve_pcl
+  double probe[6] = {};  // see serve_probe
 };
 
 template <std::size_t N>
@@ -140,10 +142,23 @@ void print(const std::vector<Row>& rows, double spacing_m) {
                 "| %.0f (%.0f) | %.3f | %.0f |\n", r.size_m * r.size_m / 1e6, r.tiles, o[0], o[1], o[2], o[3], o[4], o[5],
                 o[6], o[7], o[8], o[9], o[10], o[11], r.pcl[0], r.pcl[2], r.pcl[3], r.pcl[0] / o[2]);
   }
+  std::printf("\ntwin index structure on the same windows (20 keyframes, radius 1 m, the keyframes' landmarks):\n\n");
+  std::printf("| city | build per tile: KD-tree / voxel hash [ms] | query: KD-tree / voxel hash [us] | found | "
+              "mismatches |\n|---|---|---|---|---|\n");
+  for (const Row& r : rows) {
+    std::printf("| %.0f km^2 | %.2f / %.2f | %.2f / %.2f | %.2f | %.0f |\n", r.size_m * r.size_m / 1e6, r.probe[0],
+                r.probe[1], r.probe[2], r.probe[3], r.probe[4], r.probe[5]);
+  }
+  std::printf("\nICP work per keyframe (the flights differ between cities, so do the views):\n\n| city | source points "
+              "median | iterations median | ICP per point and association [us] |\n|---|---|---|---|\n");
+  for (const Row& r : rows) {
+    std::printf("| %.0f km^2 | %.0f | %.0f | %.3f |\n", r.size_m * r.size_m / 1e6, r.ours[12], r.ours[13], r.ours[14]);
+  }
   if (rows.size() >= 2) {
     const Row &a = rows.front(), &b = rows.back();
-    std::printf("\nratio last/first city: all-in median %.2f, p99 %.2f, RSS growth %.2f (target <= 1.2)\n",
-                b.ours[2] / a.ours[2], b.ours[3] / a.ours[3], b.ours[11] / std::max(a.ours[11], 1e-9));
+    std::printf("\nratio last/first city: all-in median %.2f, p99 %.2f, ICP per point and association %.2f, RSS growth "
+                "%.2f (target <= 1.2)\n", b.ours[2] / a.ours[2], b.ours[3] / a.ours[3], b.ours[14] / a.ours[14],
+                b.ours[11] / std::max(a.ours[11], 1e-9));
   }
 }
 
@@ -161,8 +176,10 @@ std::vector<double> parse_list(const std::string& list) {
 
 int main(int argc, char** argv) {
   if (argc >= 4 && std::string(argv[1]) == "--serve") {
-    return std::string(argv[3]) == "ours" ? bench::serve_ours(argv[2])
-                                          : bench::serve_pcl(argv[2], argc >= 5 ? std::stoi(argv[4]) : 10);
+    const std::string mode = argv[3];
+    const int n = argc >= 5 ? std::stoi(argv[4]) : 10;
+    if (mode == "probe") return bench::serve_probe(argv[2], n);
+    return mode == "ours" ? bench::serve_ours(argv[2]) : bench::serve_pcl(argv[2], n);
   }
   double spacing_m = 1.0;
   int keyframes = 150, pcl_keyframes = 10;
@@ -188,6 +205,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "city %.0f m: store %.1f s, %zu tiles\n", s, r.build_s, r.tiles);
     child(dir.string() + " ours", r.ours);
     child(dir.string() + " pcl " + std::to_string(pcl_keyframes), r.pcl);
+    child(dir.string() + " probe 20", r.probe);
     rows.push_back(r);
     fs::remove_all(dir);  // disk space: one city at a time
   }
