@@ -27,7 +27,8 @@ struct VoxelHash {
   void add(const std::vector<Eigen::Vector3d>& pts) {
     for (const auto& q : pts) {
       cells[key(std::lround(std::floor(q.x() / cell)), std::lround(std::floor(q.y() / cell)),
-                std::lround(std::floor(q.z() / cell)))].push_back(static_cast<std::uint32_t>(p.size()));
+                std::lround(std::floor(q.z() / cell)))]
+          .push_back(static_cast<std::uint32_t>(p.size()));
       p.push_back(q);
     }
   }
@@ -57,7 +58,8 @@ int serve_probe(const std::string& dir, int n) {
     const Keyframe& k = kfs[static_cast<std::size_t>(i) * kfs.size() / static_cast<std::size_t>(n)];
     const Eigen::Vector3d c = k.drift * k.p_WB_true;
     std::vector<twin::Tile> loaded;
-    for (const auto& key : tiles_in_window(store, c, 150.0)) loaded.push_back(twin::load_tile(dir + "/twin", store, key));
+    for (const auto& key : tiles_in_window(store, c, 150.0))
+      loaded.push_back(twin::load_tile(dir + "/twin", store, key));
     TwinTileIndex index(store.tile_size_m);
     VoxelHash hash;
     auto t0 = Clock::now();

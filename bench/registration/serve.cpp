@@ -1,7 +1,7 @@
 // The measuring children of bench_registration (a fresh process each, so the resident set is the registration's).
+#include <malloc.h>
 #include <chrono>
 #include <cstdio>
-#include <malloc.h>
 
 #include "keyframes.hpp"
 #include "twinslam/registration/registration.hpp"
@@ -13,7 +13,8 @@ using Clock = std::chrono::steady_clock;
 double ms(Clock::time_point a) { return std::chrono::duration<double, std::milli>(Clock::now() - a).count(); }
 
 // The index follows the keyframe's 150 m window: drop tiles that left, decode and index those that entered.
-void update_window(TwinTileIndex& index, const twin::TwinIndex& store, const std::string& dir, const Eigen::Vector3d& p) {
+void update_window(TwinTileIndex& index, const twin::TwinIndex& store, const std::string& dir,
+                   const Eigen::Vector3d& p) {
   const std::vector<twin::TileKey> want = tiles_in_window(store, p, 150.0);
   for (const twin::TileKey& k : index.keys()) {
     if (!std::binary_search(want.begin(), want.end(), k)) index.remove_tile(k);

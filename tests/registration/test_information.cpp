@@ -8,7 +8,8 @@ namespace {
 
 // Noise-free correspondences (a = b) on the plane through `o` with normal `n`, on a 10 m x 10 m grid, relative to
 // the pivot c = (0, 0, 0): the keyframe is 5-10 m from every plane, as in a street.
-void plane(std::vector<Correspondence>& out, const Eigen::Vector3d& o, const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+void plane(std::vector<Correspondence>& out, const Eigen::Vector3d& o, const Eigen::Vector3d& u,
+           const Eigen::Vector3d& v) {
   const Eigen::Vector3d n = u.cross(v).normalized();
   for (int i = 0; i <= 10; ++i) {
     for (int j = 0; j <= 10; ++j) {
@@ -31,7 +32,7 @@ Information analyse(const std::vector<Correspondence>& c) {
 
 void expect_blind_along(const Information& info, const std::vector<Vector6d>& dirs) {
   for (const Vector6d& d : dirs) {
-    EXPECT_LT((info.H * d).norm(), 1e-9 * info.H.norm()) << d.transpose();        // H itself has them in its null space
+    EXPECT_LT((info.H * d).norm(), 1e-9 * info.H.norm()) << d.transpose();  // H itself has them in its null space
     EXPECT_LT((info.information * d).norm(), 1e-9 * info.information.norm()) << d.transpose();  // ... and W_m too
   }
 }
@@ -49,9 +50,9 @@ TEST(Information, OnePlaneLeavesThreeDirections) {
 
 TEST(Information, CorridorOfTwoWallsAndAFloorLeavesOnlyTheAlongCorridorDirection) {
   std::vector<Correspondence> c;
-  plane(c, {-5, -30, -6}, {10, 0, 0}, {0, 60, 0});   // floor
-  plane(c, {-5, -30, -6}, {0, 60, 0}, {0, 0, 20});   // wall x = -5
-  plane(c, {5, -30, -6}, {0, 60, 0}, {0, 0, 20});    // wall x = +5
+  plane(c, {-5, -30, -6}, {10, 0, 0}, {0, 60, 0});  // floor
+  plane(c, {-5, -30, -6}, {0, 60, 0}, {0, 0, 20});  // wall x = -5
+  plane(c, {5, -30, -6}, {0, 60, 0}, {0, 0, 20});   // wall x = +5
   const Information info = analyse(c);
   EXPECT_EQ(info.zero_directions, 1);
   EXPECT_LT(std::abs(info.eigenvalues(0)), 1e-12);

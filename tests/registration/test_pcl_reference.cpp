@@ -13,8 +13,8 @@
 namespace twinslam::registration {
 namespace {
 
-pcl::PointCloud<pcl::PointNormal>::Ptr to_pcl(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>* n,
-                                              const Eigen::Vector3d& pivot) {
+pcl::PointCloud<pcl::PointNormal>::Ptr to_pcl(const std::vector<Eigen::Vector3d>& p,
+                                              const std::vector<Eigen::Vector3d>* n, const Eigen::Vector3d& pivot) {
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointNormal>>();
   for (std::size_t i = 0; i < p.size(); ++i) {
     pcl::PointNormal q;

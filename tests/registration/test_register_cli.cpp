@@ -2,9 +2,9 @@
 // a pose that is off by a known amount, and the JSON correction that undoes it; bad input exits 2 with one line.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "subprocess.hpp"
 #include "synthetic_twin.hpp"
@@ -60,8 +60,8 @@ TEST_F(RegisterCli, JsonCorrectionUndoesAKnownPoseError) {
   }
   twin::write_ply((dir_ / "cloud.ply").string(), cloud, twin::PlyFormat::kAscii);
   const Eigen::Vector3d p_guess = p_true + d_p;
-  const std::string pose = std::to_string(p_guess.x()) + " " + std::to_string(p_guess.y()) + " " +
-                           std::to_string(p_guess.z()) + " 32";
+  const std::string pose =
+      std::to_string(p_guess.x()) + " " + std::to_string(p_guess.y()) + " " + std::to_string(p_guess.z()) + " 32";
   const auto r = twinslam_cli({"register", "--cloud", (dir_ / "cloud.ply").string(), "--twin", (dir_ / "twin").string(),
                                "--pose", pose, "--repeat", "3", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
@@ -94,7 +94,8 @@ TEST_F(RegisterCli, BadInputExitsTwoWithOneLine) {
            {{"--cloud", ply, "--twin", "/nonexistent_twin", "--pose", "0 0 0 0"}, "/nonexistent_twin"},
            {{"--cloud", ply, "--twin", twin, "--pose", "1 2 3"}, "--pose"},
            {{"--cloud", ply, "--twin", twin, "--pose", "1 2 3 x"}, "--pose"},
-           {{"--cloud", ply, "--twin", twin, "--pose", "0 0 0 0", "--config", "/nonexistent.yaml"}, "nonexistent.yaml"}}) {
+           {{"--cloud", ply, "--twin", twin, "--pose", "0 0 0 0", "--config", "/nonexistent.yaml"},
+            "nonexistent.yaml"}}) {
     std::vector<std::string> argv{"register"};
     argv.insert(argv.end(), args.begin(), args.end());
     const auto r = twinslam_cli(argv);

@@ -19,7 +19,8 @@ struct Scene {
   Eigen::Isometry3d error = test::offset_about(kBody, {0.3, -0.2, 1.0}, 3.0, {0.6, -0.7, 0.4});  // |t| ~ 1.0 m
   std::vector<Eigen::Vector3d> landmarks(int inliers, double outlier_fraction, unsigned seed = 11) const {
     auto p = test::sample_noisy(test::city_surfaces(), inliers, 0.1, seed);
-    const auto o = test::sample_outliers(static_cast<int>(inliers * outlier_fraction / (1.0 - outlier_fraction)), seed + 1);
+    const auto o =
+        test::sample_outliers(static_cast<int>(inliers * outlier_fraction / (1.0 - outlier_fraction)), seed + 1);
     p.insert(p.end(), o.begin(), o.end());
     return p;
   }
@@ -123,9 +124,10 @@ TEST(Registration, EveryRejectionReasonIsReachable) {
   rmse.max_rmse_m = 0.02;  // 0.1 m noise
   EXPECT_EQ(status_of(rmse, in), RegistrationStatus::kRmseTooLarge);
   std::vector<test::Rect> ground{test::city_surfaces().front()};  // one plane: 3 unobservable directions
-  EXPECT_EQ(status_of(c, test::make_source(test::sample_noisy(ground, 800, 0.05, 4), Eigen::Isometry3d::Identity(),
-                                           kBody), {}, &why),
-            RegistrationStatus::kDegenerate);
+  EXPECT_EQ(
+      status_of(c, test::make_source(test::sample_noisy(ground, 800, 0.05, 4), Eigen::Isometry3d::Identity(), kBody),
+                {}, &why),
+      RegistrationStatus::kDegenerate);
   EXPECT_EQ(why, "3 poorly observed directions > max_zero_directions 2");
   // The estimator says its pose is good to 1 cm / 0.01 rad: a 1 m correction contradicts it.
   Matrix6d tight = Matrix6d::Identity() * 1e-4;
@@ -157,8 +159,8 @@ TEST(Preprocess, DropsLowQualityDownsamplesAndRemovesOutliers) {
   const SourceCloud out = preprocess(c, in);
   EXPECT_EQ(out.input, 201u);
   EXPECT_EQ(out.after_quality, 101u);
-  EXPECT_EQ(out.after_voxel, 21u);  // 20 voxels of the line + the lone point
-  EXPECT_EQ(out.p_W.size(), 20u);   // the lone point is a statistical outlier
+  EXPECT_EQ(out.after_voxel, 21u);                                 // 20 voxels of the line + the lone point
+  EXPECT_EQ(out.p_W.size(), 20u);                                  // the lone point is a statistical outlier
   for (const auto& p : out.p_W) EXPECT_NEAR(p.y(), 2000.0, 1e-9);  // expressed in W with T_WL
   EXPECT_EQ(out.p_WB, Eigen::Vector3d(1000, 2000, 30));
 }

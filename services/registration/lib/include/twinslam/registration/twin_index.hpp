@@ -22,9 +22,9 @@
 namespace twinslam::registration {
 
 struct TwinMatch {
-  Eigen::Vector3d p_W;        // nearest twin point [m, W]
-  Eigen::Vector3d n_W;        // its unit normal [W]
-  double distance_m = 0.0;    // |p_W - query| [m]
+  Eigen::Vector3d p_W;      // nearest twin point [m, W]
+  Eigen::Vector3d n_W;      // its unit normal [W]
+  double distance_m = 0.0;  // |p_W - query| [m]
 };
 
 class TwinTileIndex {
@@ -40,16 +40,15 @@ class TwinTileIndex {
                 const std::vector<Eigen::Vector3d>& normals_W);
   bool remove_tile(const twin::TileKey& key);  // false if the tile was not there
   bool contains(const twin::TileKey& key) const;
-  std::vector<twin::TileKey> keys() const;     // sorted
+  std::vector<twin::TileKey> keys() const;  // sorted
   std::size_t tile_count() const;
   std::size_t point_count() const;
   double tile_size_m() const { return tile_size_m_; }
-  std::size_t memory_bytes() const;            // points, normals and trees held (estimate)
+  std::size_t memory_bytes() const;  // points, normals and trees held (estimate)
 
   // Nearest twin point within max_dist_m of p_W (over all tiles), or nothing.
   std::optional<TwinMatch> nearest(const Eigen::Vector3d& p_W, double max_dist_m) const;
-  std::vector<std::optional<TwinMatch>> nearest_batch(const std::vector<Eigen::Vector3d>& p_W,
-                                                      double max_dist_m) const;
+  std::vector<std::optional<TwinMatch>> nearest_batch(const std::vector<Eigen::Vector3d>& p_W, double max_dist_m) const;
 
   struct Tile;  // defined in twin_index.cpp (PCL stays out of this header)
 
