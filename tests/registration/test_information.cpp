@@ -37,7 +37,7 @@ void expect_blind_along(const Information& info, const std::vector<Vector6d>& di
   }
 }
 
-TEST(Information, OnePlaneLeavesThreeDirections) {
+TEST(RegistrationInformation, OnePlaneLeavesThreeDirections) {
   std::vector<Correspondence> c;
   plane(c, {-20, -20, -8}, {40, 0, 0}, {0, 40, 0});  // ground 8 m below the body
   const Information info = analyse(c);
@@ -48,7 +48,7 @@ TEST(Information, OnePlaneLeavesThreeDirections) {
   EXPECT_GT((info.information * dir(0, 0, 0, 0, 0, 1)).norm(), 1.0);  // height stays observed
 }
 
-TEST(Information, CorridorOfTwoWallsAndAFloorLeavesOnlyTheAlongCorridorDirection) {
+TEST(RegistrationInformation, CorridorOfTwoWallsAndAFloorLeavesOnlyTheAlongCorridorDirection) {
   std::vector<Correspondence> c;
   plane(c, {-5, -30, -6}, {10, 0, 0}, {0, 60, 0});  // floor
   plane(c, {-5, -30, -6}, {0, 60, 0}, {0, 0, 20});  // wall x = -5
@@ -61,7 +61,7 @@ TEST(Information, CorridorOfTwoWallsAndAFloorLeavesOnlyTheAlongCorridorDirection
   expect_blind_along(info, {dir(0, 0, 0, 0, 1, 0)});
 }
 
-TEST(Information, CornerOfThreePlanesObservesEverything) {
+TEST(RegistrationInformation, CornerOfThreePlanesObservesEverything) {
   std::vector<Correspondence> c;
   plane(c, {-10, -10, -8}, {20, 0, 0}, {0, 20, 0});
   plane(c, {-10, -10, -8}, {0, 20, 0}, {0, 0, 20});
@@ -72,7 +72,7 @@ TEST(Information, CornerOfThreePlanesObservesEverything) {
   EXPECT_NEAR((info.information - info.H / info.sigma_sq).norm(), 0.0, 1e-9 * info.information.norm());
 }
 
-TEST(Information, HessianIsIndependentOfWherePointsAreExpressedOnlyThroughThePivot) {
+TEST(RegistrationInformation, HessianIsIndependentOfWherePointsAreExpressedOnlyThroughThePivot) {
   // H depends on a_j relative to the pivot: shifting every point and the pivot together changes nothing, which is
   // why the correction is linearized about the keyframe position and not about W's origin.
   std::vector<Correspondence> c;

@@ -25,7 +25,7 @@ pcl::PointCloud<pcl::PointNormal>::Ptr to_pcl(const std::vector<Eigen::Vector3d>
   return cloud;
 }
 
-TEST(PclReference, PointToPlaneIcpWithNormalsAgreesWithOurs) {
+TEST(RegistrationPclReference, PointToPlaneIcpWithNormalsAgreesWithOurs) {
   const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0.0, -5.0, 15.0);
   const test::PointSet twin = test::sample_grid(test::city_surfaces(), 0.5);
   const TwinTileIndex index = test::make_index(twin);

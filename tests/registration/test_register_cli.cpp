@@ -32,7 +32,7 @@ twin::Mesh city_mesh() {
   return m;
 }
 
-class RegisterCli : public ::testing::Test {
+class RegistrationCli : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("twinslam_register_cli_" + std::to_string(::getpid()));
@@ -47,7 +47,7 @@ class RegisterCli : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(RegisterCli, JsonCorrectionUndoesAKnownPoseError) {
+TEST_F(RegistrationCli, JsonCorrectionUndoesAKnownPoseError) {
   // True body pose: 15 m above the city centre, yaw 30 deg. The pose given to the CLI is off by (0.5, -0.4, 0.2) m and
   // 2 deg of yaw; the landmarks are true points expressed in the true body frame.
   const Eigen::Vector3d p_true = test::kCentre + Eigen::Vector3d(0, -5, 15), d_p(0.5, -0.4, 0.2);
@@ -83,7 +83,7 @@ TEST_F(RegisterCli, JsonCorrectionUndoesAKnownPoseError) {
   EXPECT_TRUE(j.contains("rmse_m") && j.contains("fitness"));
 }
 
-TEST_F(RegisterCli, BadInputExitsTwoWithOneLine) {
+TEST_F(RegistrationCli, BadInputExitsTwoWithOneLine) {
   const std::string twin = (dir_ / "twin").string();
   twin::Mesh cloud;
   cloud.p_W = {{0, 0, 0}, {1, 0, 0}};

@@ -149,7 +149,7 @@ TEST(Registration, BadInputIsAnInputErrorNotACrash) {
   EXPECT_THROW(register_cloud(RegistrationConfig{}, s.index, in), InputError);
 }
 
-TEST(Preprocess, DropsLowQualityDownsamplesAndRemovesOutliers) {
+TEST(RegistrationPreprocess, DropsLowQualityDownsamplesAndRemovesOutliers) {
   SourceInput in;
   for (int i = 0; i < 200; ++i) in.landmarks.push_back({{0.01 * i, 0.0, 0.0}, i % 2 ? 0.9 : 0.1});  // 2 m line
   in.landmarks.push_back({{1.0, 30.0, 0.0}, 1.0});  // a lone point far from the rest
