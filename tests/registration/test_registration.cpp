@@ -136,6 +136,31 @@ TEST(Registration, EveryRejectionReasonIsReachable) {
   EXPECT_EQ(status_of(c, in, loose), RegistrationStatus::kAccepted);
 }
 
+TEST(Registration, CorridorIsAcceptedWithNoInformationAlongIt) {
+  // A street canyon (two facades 10 m apart and the road, 120 m long in n): the position along the street is
+  // unobservable. The registration is still useful (cross-street, height, attitude) and the estimator must get exactly
+  // no information along the street, whatever ICP left there.
+  const Eigen::Vector3d o = test::kCentre + Eigen::Vector3d(-5, -60, 0);
+  const std::vector<test::Rect> street{{o, {10, 0, 0}, {0, 120, 0}},
+                                       {o, {0, 120, 0}, {0, 0, 15}},
+                                       {o + Eigen::Vector3d(10, 0, 0), {0, 120, 0}, {0, 0, 15}}};
+  const TwinTileIndex index = test::make_index(test::sample_grid(street, 0.5));
+  const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0, 0, 5);
+  const Eigen::Isometry3d error = test::offset_about(body, {0, 0, 1}, 1.0, {0.3, 0.5, 0.2});
+  const RegistrationResult r = register_cloud(
+      RegistrationConfig{}, index, test::make_source(test::sample_noisy(street, 1500, 0.05, 3), error, body));
+  ASSERT_TRUE(r.accepted()) << r.reason;
+  EXPECT_EQ(r.details.zero_directions, 1);
+  Vector6d along;
+  along << 0, 0, 0, 0, 1, 0;
+  EXPECT_LT((r.information * along).norm(), 1e-9 * r.information.norm());
+  const Eigen::Vector3d err = r.correction_W * (error * body) - body;
+  EXPECT_LT(std::abs(err.x()), 0.02);  // across the street and height: recovered
+  EXPECT_LT(std::abs(err.z()), 0.02);
+  const Eigen::Matrix3d dR = (r.correction_W * error).linear();
+  EXPECT_LT(geometry::so3_log(dR).norm() * 180.0 / M_PI, 0.05);
+}
+
 TEST(Registration, BadInputIsAnInputErrorNotACrash) {
   const Scene& s = scene();
   SourceInput in = test::make_source(s.landmarks(100, 0.0), s.error, kBody);
