@@ -127,7 +127,8 @@ TEST(RegistrationTwinIndex, StoreAndMapTileBytesGiveTheSameIndex) {
   EXPECT_TRUE(tiles_in_window(store, {500.0, 500.0, 0.0}, 150.0).empty());
   for (const auto& key : keys) {
     add_tile_from_store(from_store, dir.string(), store, key);
-    add_tile_from_draco(from_bytes, key, twin::read_tile_file(dir.string(), key, true));
+    add_tile_from_draco(from_bytes, key, twin::read_tile_file(dir.string(), key, false),
+                        twin::read_tile_file(dir.string(), key, true));
   }
   EXPECT_EQ(from_store.point_count(), store.points);
   const auto m = from_store.nearest({50.0, 45.3, 10.0}, 1.0);  // next to the wall y = 45
@@ -138,7 +139,10 @@ TEST(RegistrationTwinIndex, StoreAndMapTileBytesGiveTheSameIndex) {
     const Eigen::Vector3d qq = q - test::kCentre + Eigen::Vector3d(50, 50, 0);
     expect_same(from_store.nearest(qq, 2.0), from_bytes.nearest(qq, 2.0));
   }
-  EXPECT_THROW(add_tile_from_draco(from_bytes, {0, 0}, {1, 2, 3}), InputError);
+  EXPECT_THROW(add_tile_from_draco(from_bytes, {0, 0}, {}, {1, 2, 3}), InputError);  // corrupt bytes
+  EXPECT_THROW(add_tile_from_draco(from_bytes, {0, 0}, {1, 2, 3}, {}), InputError);  // triangles but no points
+  add_tile_from_draco(from_bytes, {9, 9}, {}, {});                                    // an empty tile is fine
+  EXPECT_TRUE(from_bytes.contains({9, 9}));
   std::filesystem::remove_all(dir);
 }
 

@@ -62,10 +62,12 @@ class TwinTileIndex {
 // Loads a stored tile's point sampling with normals (twin::load_tile) into the index; InputError as load_tile.
 void add_tile_from_store(TwinTileIndex& index, const std::string& twin_dir, const twin::TwinIndex& store,
                          const twin::TileKey& key);
-// The point-sampling Draco buffer of a MapTile message (`points_draco`, what the DDS node receives). Only the point
-// sampling is indexed: ICP needs points with normals, the message's triangle mesh is not used. An empty buffer adds an
-// empty tile. InputError names the tile on bad bytes or missing normals.
-void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& points_draco);
+// The two Draco buffers of a MapTile message (what the DDS node receives). ICP needs points with normals, so only
+// `points_draco` is indexed; `mesh_draco` is not decoded (the store samples points on every triangle, so a tile with
+// triangles always has points). Empty `points_draco`: an empty tile if the mesh is empty too, else InputError (the
+// tile would look like free space to ICP). InputError names the tile on bad bytes or points without normals.
+void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& mesh_draco,
+                         const std::vector<std::uint8_t>& points_draco);
 
 // Keys of the stored tiles that overlap the square window of side window_m centred on (e, n) of p_W (the paper's
 // 150 m x 150 m local map), sorted.
