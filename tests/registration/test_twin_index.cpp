@@ -143,6 +143,12 @@ TEST(RegistrationTwinIndex, StoreAndMapTileBytesGiveTheSameIndex) {
   EXPECT_THROW(add_tile_from_draco(from_bytes, {0, 0}, {1, 2, 3}, {}), InputError);  // triangles but no points
   add_tile_from_draco(from_bytes, {9, 9}, {}, {});                                    // an empty tile is fine
   EXPECT_TRUE(from_bytes.contains({9, 9}));
+  TwinTileIndex points_only(store.tile_size_m);  // the points-only overload gives the same index
+  for (const auto& key : keys) add_tile_from_draco(points_only, key, twin::read_tile_file(dir.string(), key, true));
+  for (const Eigen::Vector3d& q : random_queries(50, 10)) {
+    const Eigen::Vector3d qq = q - test::kCentre + Eigen::Vector3d(50, 50, 0);
+    expect_same(points_only.nearest(qq, 2.0), from_store.nearest(qq, 2.0));
+  }
   std::filesystem::remove_all(dir);
 }
 

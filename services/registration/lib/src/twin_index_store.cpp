@@ -34,6 +34,10 @@ void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const s
   add_points(index, key, twin::decode_draco(points_draco.data(), points_draco.size(), what), what);
 }
 
+void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& points_draco) {
+  add_tile_from_draco(index, key, {}, points_draco);
+}
+
 std::vector<twin::TileKey> tiles_in_window(const twin::TwinIndex& store, const Eigen::Vector3d& p_W, double window_m) {
   if (!p_W.allFinite() || !(window_m > 0.0)) throw InputError("tile window: non-finite position or window <= 0 m");
   const double half = 0.5 * window_m, s = store.tile_size_m;

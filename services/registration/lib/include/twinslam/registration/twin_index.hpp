@@ -68,6 +68,8 @@ void add_tile_from_store(TwinTileIndex& index, const std::string& twin_dir, cons
 // tile would look like free space to ICP). InputError names the tile on bad bytes or points without normals.
 void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& mesh_draco,
                          const std::vector<std::uint8_t>& points_draco);
+// Only the point buffer (empty: an empty tile), for callers that hold no mesh (WindowedTwin keeps only the points).
+void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& points_draco);
 
 // Keys of the stored tiles that overlap the square window of side window_m centred on (e, n) of p_W (the paper's
 // 150 m x 150 m local map), sorted.
