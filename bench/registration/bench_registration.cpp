@@ -7,8 +7,10 @@
 // update (tiles entering the 150 m window are decoded from the store and indexed, leaving ones dropped), then
 // register_cloud (preprocess, ICP, information). A second child (`--serve DIR pcl N`) runs the paper code's recipe on
 // N of the same keyframes: +-350 m crop, KD-tree rebuilt per call, PCL IterativeClosestPointWithNormals, 25
-// iterations, 8 m max correspondence distance.
+// iterations, 8 m max correspondence distance. A third (`--serve DIR probe N`) compares the index's structure with a
+// voxel hash (index_probe.cpp).
 // Usage: bench_registration [--sizes 1000,5000] [--spacing M] [--keyframes K] [--pcl-keyframes N]
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,7 +18,6 @@
 #include <fstream>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "keyframes.hpp"
@@ -34,7 +35,6 @@ using namespace twinslam::registration;
 using bench::Keyframe;
 using Clock = std::chrono::steady_clock;
 
-
 // Landmarks a camera at p_W would triangulate: points on surfaces facing it within 50 m, noisy, with outliers.
 std::vector<Eigen::Vector3d> sample_view(const sim::TriMesh& mesh, const Eigen::Vector3d& p_W, std::mt19937& rng) {
   std::vector<std::size_t> tri;
@@ -47,7 +47,7 @@ std::vector<Eigen::Vector3d> sample_view(const sim::TriMesh& mesh, const Eigen::
     if (box.exteriorDistance(p_W) > 50.0) continue;
     const Eigen::Vector3d n = (b - a).cross(c - a);
     if (n.norm() < 1e-9 || n.dot(p_W - a) <= 0.0) continue;  // facing away
-    const double area = std::min(0.5 * n.norm(), 7850.0);   // at most the 50 m disc
+    const double area = std::min(0.5 * n.norm(), 7850.0);    // at most the 50 m disc
     tri.push_back(t);
     weight.push_back(area * (std::abs(n.normalized().z()) < 0.3 ? 3.0 : 1.0));
   }
@@ -61,12 +61,14 @@ std::vector<Eigen::Vector3d> sample_view(const sim::TriMesh& mesh, const Eigen::
     const auto& f = mesh.triangles[tri[pick(rng)]];
     double s = u(rng), t = u(rng);
     if (s + t > 1.0) s = 1.0 - s, t = 1.0 - t;
-    const Eigen::Vector3d q = mesh.p_W[f[0]] + s * (mesh.p_W[f[1]] - mesh.p_W[f[0]]) + t * (mesh.p_W[f[2]] - mesh.p_W[f[0]]);
+    const Eigen::Vector3d q =
+        mesh.p_W[f[0]] + s * (mesh.p_W[f[1]] - mesh.p_W[f[0]]) + t * (mesh.p_W[f[2]] - mesh.p_W[f[0]]);
     if ((q - p_W).norm() > 50.0) continue;
     out.push_back(q + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
   }
   std::uniform_real_distribution<double> box(-30.0, 30.0);
-  for (std::size_t k = 0, n = out.size() / 9; k < n; ++k) out.push_back(p_W + Eigen::Vector3d(box(rng), box(rng), box(rng)));
+  for (std::size_t k = 0, n = out.size() / 9; k < n; ++k)
+    out.push_back(p_W + Eigen::Vector3d(box(rng), box(rng), box(rng)));
   return out;
 }
 
@@ -110,8 +112,9 @@ double prepare(double size_m, double spacing_m, int keyframes, const fs::path& d
 struct Row {
   double size_m = 0, build_s = 0;
   std::size_t tiles = 0;
-  double ours[12] = {};  // see serve_ours
+  double ours[15] = {};  // see serve_ours
   double pcl[4] = {};    // see serve_pcl
+  double probe[6] = {};  // see serve_probe
 };
 
 template <std::size_t N>
@@ -128,22 +131,43 @@ void child(const std::string& args, double (&out)[N]) {
 }
 
 void print(const std::vector<Row>& rows, double spacing_m) {
-  std::printf("registration per keyframe (city-loops, 150 m window of 50 m tiles, twin point spacing %.1f m, "
-              "150-1500 landmarks, 0.1 m noise, 10 %% outliers, drift <= 0.5 m / 1 deg)\n\n", spacing_m);
-  std::printf("| city | tiles | keyframes | accepted | all-in median [ms] | all-in p99 [ms] | index update median / p99 "
-              "[ms] | preprocess [ms] | ICP [ms] | Hessian [ms] | position error median [m] | index [MB] | RSS growth "
-              "[MB] | PCL recipe median [ms] (crop points) | PCL error median [m] | ratio PCL / ours |\n");
+  std::printf(
+      "registration per keyframe (city-loops, 150 m window of 50 m tiles, twin point spacing %.1f m, "
+      "150-1500 landmarks, 0.1 m noise, 10 %% outliers, drift <= 0.5 m / 1 deg)\n\n",
+      spacing_m);
+  std::printf(
+      "| city | tiles | keyframes | accepted | all-in median [ms] | all-in p99 [ms] | index update median / p99 "
+      "[ms] | preprocess [ms] | ICP [ms] | Hessian [ms] | position error median [m] | index [MB] | RSS growth "
+      "[MB] | PCL recipe median [ms] (crop points) | PCL error median [m] | ratio PCL / ours |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
     const double* o = r.ours;
-    std::printf("| %.0f km^2 | %zu | %.0f | %.0f | %.2f | %.2f | %.2f / %.2f | %.2f | %.2f | %.3f | %.3f | %.1f | %.1f "
-                "| %.0f (%.0f) | %.3f | %.0f |\n", r.size_m * r.size_m / 1e6, r.tiles, o[0], o[1], o[2], o[3], o[4], o[5],
-                o[6], o[7], o[8], o[9], o[10], o[11], r.pcl[0], r.pcl[2], r.pcl[3], r.pcl[0] / o[2]);
+    std::printf(
+        "| %.0f km^2 | %zu | %.0f | %.0f | %.2f | %.2f | %.2f / %.2f | %.2f | %.2f | %.3f | %.3f | %.1f | %.1f "
+        "| %.0f (%.0f) | %.3f | %.0f |\n",
+        r.size_m * r.size_m / 1e6, r.tiles, o[0], o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10], o[11],
+        r.pcl[0], r.pcl[2], r.pcl[3], r.pcl[0] / o[2]);
+  }
+  std::printf("\ntwin index structure on the same windows (20 keyframes, radius 1 m, the keyframes' landmarks):\n\n");
+  std::printf(
+      "| city | build per tile: KD-tree / voxel hash [ms] | query: KD-tree / voxel hash [us] | found | "
+      "mismatches |\n|---|---|---|---|---|\n");
+  for (const Row& r : rows) {
+    std::printf("| %.0f km^2 | %.2f / %.2f | %.2f / %.2f | %.2f | %.0f |\n", r.size_m * r.size_m / 1e6, r.probe[0],
+                r.probe[1], r.probe[2], r.probe[3], r.probe[4], r.probe[5]);
+  }
+  std::printf(
+      "\nICP work per keyframe (the flights differ between cities, so do the views):\n\n| city | source points "
+      "median | iterations median | ICP per point and association [us] |\n|---|---|---|---|\n");
+  for (const Row& r : rows) {
+    std::printf("| %.0f km^2 | %.0f | %.0f | %.3f |\n", r.size_m * r.size_m / 1e6, r.ours[12], r.ours[13], r.ours[14]);
   }
   if (rows.size() >= 2) {
     const Row &a = rows.front(), &b = rows.back();
-    std::printf("\nratio last/first city: all-in median %.2f, p99 %.2f, RSS growth %.2f (target <= 1.2)\n",
-                b.ours[2] / a.ours[2], b.ours[3] / a.ours[3], b.ours[11] / std::max(a.ours[11], 1e-9));
+    std::printf(
+        "\nratio last/first city: all-in median %.2f, p99 %.2f, ICP per point and association %.2f, RSS growth "
+        "%.2f (target <= 1.2)\n",
+        b.ours[2] / a.ours[2], b.ours[3] / a.ours[3], b.ours[14] / a.ours[14], b.ours[11] / std::max(a.ours[11], 1e-9));
   }
 }
 
@@ -161,20 +185,27 @@ std::vector<double> parse_list(const std::string& list) {
 
 int main(int argc, char** argv) {
   if (argc >= 4 && std::string(argv[1]) == "--serve") {
-    return std::string(argv[3]) == "ours" ? bench::serve_ours(argv[2])
-                                          : bench::serve_pcl(argv[2], argc >= 5 ? std::stoi(argv[4]) : 10);
+    const std::string mode = argv[3];
+    const int n = argc >= 5 ? std::stoi(argv[4]) : 10;
+    if (mode == "probe") return bench::serve_probe(argv[2], n);
+    return mode == "ours" ? bench::serve_ours(argv[2]) : bench::serve_pcl(argv[2], n);
   }
   double spacing_m = 1.0;
   int keyframes = 150, pcl_keyframes = 10;
   std::vector<double> sizes{1000, 5000};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
-    if (flag == "--sizes") sizes = parse_list(value);
-    else if (flag == "--spacing") spacing_m = std::stod(value);
-    else if (flag == "--keyframes") keyframes = std::stoi(value);
-    else if (flag == "--pcl-keyframes") pcl_keyframes = std::stoi(value);
+    if (flag == "--sizes")
+      sizes = parse_list(value);
+    else if (flag == "--spacing")
+      spacing_m = std::stod(value);
+    else if (flag == "--keyframes")
+      keyframes = std::stoi(value);
+    else if (flag == "--pcl-keyframes")
+      pcl_keyframes = std::stoi(value);
     else {
-      std::fprintf(stderr, "usage: bench_registration [--sizes S,S] [--spacing M] [--keyframes K] [--pcl-keyframes N]\n");
+      std::fprintf(stderr,
+                   "usage: bench_registration [--sizes S,S] [--spacing M] [--keyframes K] [--pcl-keyframes N]\n");
       return 2;
     }
   }
@@ -188,6 +219,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "city %.0f m: store %.1f s, %zu tiles\n", s, r.build_s, r.tiles);
     child(dir.string() + " ours", r.ours);
     child(dir.string() + " pcl " + std::to_string(pcl_keyframes), r.pcl);
+    child(dir.string() + " probe 20", r.probe);
     rows.push_back(r);
     fs::remove_all(dir);  // disk space: one city at a time
   }

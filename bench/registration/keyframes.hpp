@@ -14,9 +14,9 @@
 namespace twinslam::registration::bench {
 
 struct Keyframe {
-  Eigen::Vector3d p_WB_true = Eigen::Vector3d::Zero();   // true body position [m, W]
+  Eigen::Vector3d p_WB_true = Eigen::Vector3d::Zero();      // true body position [m, W]
   Eigen::Isometry3d drift = Eigen::Isometry3d::Identity();  // the estimate's error: p_guess = drift * p_true
-  std::vector<Eigen::Vector3d> p_guess_W;                 // landmarks as the estimator sees them (T_WL = identity)
+  std::vector<Eigen::Vector3d> p_guess_W;                   // landmarks as the estimator sees them (T_WL = identity)
 };
 
 inline void write_keyframes(const std::string& path, const std::vector<Keyframe>& kfs) {
@@ -79,5 +79,6 @@ inline double pct(std::vector<double> v, double q) {
 // The measuring children (serve.cpp): each prints one line of numbers on stdout.
 int serve_ours(const std::string& dir);
 int serve_pcl(const std::string& dir, int keyframes);
+int serve_probe(const std::string& dir, int keyframes);  // index_probe.cpp
 
 }  // namespace twinslam::registration::bench

@@ -23,10 +23,11 @@ PclBaseline::~PclBaseline() { delete impl; }
 
 double PclBaseline::run(const Keyframe& k, double crop_half_m, int iterations, double max_corr_m,
                         Eigen::Vector3d& p_corrected, std::size_t& crop_points) {
-  const Eigen::Vector3d c = k.drift * k.p_WB_true;  // the estimate's keyframe position: crop centre and pivot
+  const Eigen::Vector3d c = k.drift * k.p_WB_true;     // the estimate's keyframe position: crop centre and pivot
   for (const twin::TileInfo& t : impl->store.tiles) {  // load (untimed) what the crop needs
     if (t.bounds_W.max().x() < c.x() - crop_half_m || t.bounds_W.min().x() > c.x() + crop_half_m ||
-        t.bounds_W.max().y() < c.y() - crop_half_m || t.bounds_W.min().y() > c.y() + crop_half_m) continue;
+        t.bounds_W.max().y() < c.y() - crop_half_m || t.bounds_W.min().y() > c.y() + crop_half_m)
+      continue;
     if (!impl->tiles.count(t.key)) impl->tiles[t.key] = twin::load_tile(impl->dir, impl->store, t.key).points_W;
   }
   const auto t0 = std::chrono::steady_clock::now();

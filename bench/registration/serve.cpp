@@ -1,7 +1,7 @@
 // The measuring children of bench_registration (a fresh process each, so the resident set is the registration's).
+#include <malloc.h>
 #include <chrono>
 #include <cstdio>
-#include <malloc.h>
 
 #include "keyframes.hpp"
 #include "twinslam/registration/registration.hpp"
@@ -13,7 +13,8 @@ using Clock = std::chrono::steady_clock;
 double ms(Clock::time_point a) { return std::chrono::duration<double, std::milli>(Clock::now() - a).count(); }
 
 // The index follows the keyframe's 150 m window: drop tiles that left, decode and index those that entered.
-void update_window(TwinTileIndex& index, const twin::TwinIndex& store, const std::string& dir, const Eigen::Vector3d& p) {
+void update_window(TwinTileIndex& index, const twin::TwinIndex& store, const std::string& dir,
+                   const Eigen::Vector3d& p) {
   const std::vector<twin::TileKey> want = tiles_in_window(store, p, 150.0);
   for (const twin::TileKey& k : index.keys()) {
     if (!std::binary_search(want.begin(), want.end(), k)) index.remove_tile(k);
@@ -26,7 +27,8 @@ void update_window(TwinTileIndex& index, const twin::TwinIndex& store, const std
 }  // namespace
 
 // Prints: keyframes, accepted, all-in median, p99, index-update median, p99, preprocess, ICP, Hessian medians [ms],
-// median position error of accepted keyframes [m], index memory (largest) [MB], RSS growth [MB].
+// median position error of accepted keyframes [m], index memory (largest) [MB], RSS growth [MB], medians of source
+// points, ICP iterations and ICP time per point and association (iterations + the final one) [us].
 int serve_ours(const std::string& dir) {
   const std::vector<Keyframe> kfs = read_keyframes(dir + "/keyframes.bin");
   const std::string twin_dir = dir + "/twin";
@@ -37,7 +39,7 @@ int serve_ours(const std::string& dir) {
   const double rss0 = rss_mb();
   const RegistrationConfig config;
   TwinTileIndex index(store.tile_size_m);
-  std::vector<double> all, upd, pre, icp, hes, err;
+  std::vector<double> all, upd, pre, icp, hes, err, pts, its, per;
   double index_mb = 0;
   for (const Keyframe& k : kfs) {
     const Eigen::Vector3d c = k.drift * k.p_WB_true;
@@ -52,12 +54,15 @@ int serve_ours(const std::string& dir) {
     pre.push_back(r.time.preprocess_ms);
     icp.push_back(r.time.icp_ms);
     hes.push_back(r.time.hessian_ms);
+    pts.push_back(static_cast<double>(r.source_points));
+    its.push_back(r.iterations);
+    per.push_back(1e3 * r.time.icp_ms / std::max(1.0, static_cast<double>(r.source_points * (r.iterations + 1))));
     if (r.accepted()) err.push_back((r.correction_W * c - k.p_WB_true).norm());
     index_mb = std::max(index_mb, static_cast<double>(index.memory_bytes()) / (1024.0 * 1024.0));
   }
-  std::printf("%zu %zu %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.5f %.3f %.3f\n", kfs.size(), err.size(), pct(all, 0.5),
-              pct(all, 0.99), pct(upd, 0.5), pct(upd, 0.99), pct(pre, 0.5), pct(icp, 0.5), pct(hes, 0.5), pct(err, 0.5),
-              index_mb, rss_mb() - rss0);
+  std::printf("%zu %zu %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.5f %.3f %.3f %.0f %.0f %.3f\n", kfs.size(), err.size(),
+              pct(all, 0.5), pct(all, 0.99), pct(upd, 0.5), pct(upd, 0.99), pct(pre, 0.5), pct(icp, 0.5), pct(hes, 0.5),
+              pct(err, 0.5), index_mb, rss_mb() - rss0, pct(pts, 0.5), pct(its, 0.5), pct(per, 0.5));
   return 0;
 }
 

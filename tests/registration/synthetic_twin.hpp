@@ -31,15 +31,16 @@ inline const Eigen::Vector3d kCentre{1210.0, 810.0, 0.0};
 inline std::vector<Rect> city_surfaces() {
   const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
   std::vector<Rect> r{{kCentre + Eigen::Vector3d(-50, -50, 0), 100 * X, 100 * Y}};
-  const double boxes[4][5] = {{-30, -25, 20, 15, 25}, {15, -20, 18, 22, 35}, {-20, 20, 25, 18, 20}, {25, 25, 15, 15, 45}};
+  const double boxes[4][5] = {
+      {-30, -25, 20, 15, 25}, {15, -20, 18, 22, 35}, {-20, 20, 25, 18, 20}, {25, 25, 15, 15, 45}};
   for (const auto& b : boxes) {
     const Eigen::Vector3d o = kCentre + Eigen::Vector3d(b[0], b[1], 0);
     const Eigen::Vector3d w = b[2] * X, d = b[3] * Y, h = b[4] * Z;
-    r.push_back({o, h, w});          // south wall, normal -y
-    r.push_back({o + w, h, d});      // east wall, +x... (h x d = -x: orientation is irrelevant for point-to-plane)
-    r.push_back({o + d, w, h});      // north wall
-    r.push_back({o, d, h});          // west wall
-    r.push_back({o + h, w, d});      // roof
+    r.push_back({o, h, w});      // south wall, normal -y
+    r.push_back({o + w, h, d});  // east wall, +x... (h x d = -x: orientation is irrelevant for point-to-plane)
+    r.push_back({o + d, w, h});  // north wall
+    r.push_back({o, d, h});      // west wall
+    r.push_back({o + h, w, d});  // roof
   }
   return r;
 }
@@ -50,7 +51,8 @@ inline PointSet sample_grid(const std::vector<Rect>& rects, double spacing, unsi
   std::uniform_real_distribution<double> jitter(0.0, 1.0);
   PointSet out;
   for (const Rect& r : rects) {
-    const int nu = std::max(1, static_cast<int>(r.u.norm() / spacing)), nv = std::max(1, static_cast<int>(r.v.norm() / spacing));
+    const int nu = std::max(1, static_cast<int>(r.u.norm() / spacing)),
+              nv = std::max(1, static_cast<int>(r.v.norm() / spacing));
     for (int i = 0; i < nu; ++i) {
       for (int j = 0; j < nv; ++j) {
         const double s = (i + jitter(rng)) / nu, t = (j + jitter(rng)) / nv;

@@ -8,7 +8,8 @@ namespace {
 
 // Noise-free correspondences (a = b) on the plane through `o` with normal `n`, on a 10 m x 10 m grid, relative to
 // the pivot c = (0, 0, 0): the keyframe is 5-10 m from every plane, as in a street.
-void plane(std::vector<Correspondence>& out, const Eigen::Vector3d& o, const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+void plane(std::vector<Correspondence>& out, const Eigen::Vector3d& o, const Eigen::Vector3d& u,
+           const Eigen::Vector3d& v) {
   const Eigen::Vector3d n = u.cross(v).normalized();
   for (int i = 0; i <= 10; ++i) {
     for (int j = 0; j <= 10; ++j) {
@@ -31,12 +32,12 @@ Information analyse(const std::vector<Correspondence>& c) {
 
 void expect_blind_along(const Information& info, const std::vector<Vector6d>& dirs) {
   for (const Vector6d& d : dirs) {
-    EXPECT_LT((info.H * d).norm(), 1e-9 * info.H.norm()) << d.transpose();        // H itself has them in its null space
+    EXPECT_LT((info.H * d).norm(), 1e-9 * info.H.norm()) << d.transpose();  // H itself has them in its null space
     EXPECT_LT((info.information * d).norm(), 1e-9 * info.information.norm()) << d.transpose();  // ... and W_m too
   }
 }
 
-TEST(Information, OnePlaneLeavesThreeDirections) {
+TEST(RegistrationInformation, OnePlaneLeavesThreeDirections) {
   std::vector<Correspondence> c;
   plane(c, {-20, -20, -8}, {40, 0, 0}, {0, 40, 0});  // ground 8 m below the body
   const Information info = analyse(c);
@@ -47,11 +48,11 @@ TEST(Information, OnePlaneLeavesThreeDirections) {
   EXPECT_GT((info.information * dir(0, 0, 0, 0, 0, 1)).norm(), 1.0);  // height stays observed
 }
 
-TEST(Information, CorridorOfTwoWallsAndAFloorLeavesOnlyTheAlongCorridorDirection) {
+TEST(RegistrationInformation, CorridorOfTwoWallsAndAFloorLeavesOnlyTheAlongCorridorDirection) {
   std::vector<Correspondence> c;
-  plane(c, {-5, -30, -6}, {10, 0, 0}, {0, 60, 0});   // floor
-  plane(c, {-5, -30, -6}, {0, 60, 0}, {0, 0, 20});   // wall x = -5
-  plane(c, {5, -30, -6}, {0, 60, 0}, {0, 0, 20});    // wall x = +5
+  plane(c, {-5, -30, -6}, {10, 0, 0}, {0, 60, 0});  // floor
+  plane(c, {-5, -30, -6}, {0, 60, 0}, {0, 0, 20});  // wall x = -5
+  plane(c, {5, -30, -6}, {0, 60, 0}, {0, 0, 20});   // wall x = +5
   const Information info = analyse(c);
   EXPECT_EQ(info.zero_directions, 1);
   EXPECT_LT(std::abs(info.eigenvalues(0)), 1e-12);
@@ -60,7 +61,7 @@ TEST(Information, CorridorOfTwoWallsAndAFloorLeavesOnlyTheAlongCorridorDirection
   expect_blind_along(info, {dir(0, 0, 0, 0, 1, 0)});
 }
 
-TEST(Information, CornerOfThreePlanesObservesEverything) {
+TEST(RegistrationInformation, CornerOfThreePlanesObservesEverything) {
   std::vector<Correspondence> c;
   plane(c, {-10, -10, -8}, {20, 0, 0}, {0, 20, 0});
   plane(c, {-10, -10, -8}, {0, 20, 0}, {0, 0, 20});
@@ -71,7 +72,7 @@ TEST(Information, CornerOfThreePlanesObservesEverything) {
   EXPECT_NEAR((info.information - info.H / info.sigma_sq).norm(), 0.0, 1e-9 * info.information.norm());
 }
 
-TEST(Information, HessianIsIndependentOfWherePointsAreExpressedOnlyThroughThePivot) {
+TEST(RegistrationInformation, HessianIsIndependentOfWherePointsAreExpressedOnlyThroughThePivot) {
   // H depends on a_j relative to the pivot: shifting every point and the pivot together changes nothing, which is
   // why the correction is linearized about the keyframe position and not about W's origin.
   std::vector<Correspondence> c;

@@ -13,8 +13,8 @@
 namespace twinslam::registration {
 namespace {
 
-pcl::PointCloud<pcl::PointNormal>::Ptr to_pcl(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>* n,
-                                              const Eigen::Vector3d& pivot) {
+pcl::PointCloud<pcl::PointNormal>::Ptr to_pcl(const std::vector<Eigen::Vector3d>& p,
+                                              const std::vector<Eigen::Vector3d>* n, const Eigen::Vector3d& pivot) {
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointNormal>>();
   for (std::size_t i = 0; i < p.size(); ++i) {
     pcl::PointNormal q;
@@ -25,7 +25,7 @@ pcl::PointCloud<pcl::PointNormal>::Ptr to_pcl(const std::vector<Eigen::Vector3d>
   return cloud;
 }
 
-TEST(PclReference, PointToPlaneIcpWithNormalsAgreesWithOurs) {
+TEST(RegistrationPclReference, PointToPlaneIcpWithNormalsAgreesWithOurs) {
   const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0.0, -5.0, 15.0);
   const test::PointSet twin = test::sample_grid(test::city_surfaces(), 0.5);
   const TwinTileIndex index = test::make_index(twin);

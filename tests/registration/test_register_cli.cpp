@@ -2,9 +2,9 @@
 // a pose that is off by a known amount, and the JSON correction that undoes it; bad input exits 2 with one line.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "subprocess.hpp"
 #include "synthetic_twin.hpp"
@@ -32,7 +32,7 @@ twin::Mesh city_mesh() {
   return m;
 }
 
-class RegisterCli : public ::testing::Test {
+class RegistrationCli : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("twinslam_register_cli_" + std::to_string(::getpid()));
@@ -47,7 +47,7 @@ class RegisterCli : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(RegisterCli, JsonCorrectionUndoesAKnownPoseError) {
+TEST_F(RegistrationCli, JsonCorrectionUndoesAKnownPoseError) {
   // True body pose: 15 m above the city centre, yaw 30 deg. The pose given to the CLI is off by (0.5, -0.4, 0.2) m and
   // 2 deg of yaw; the landmarks are true points expressed in the true body frame.
   const Eigen::Vector3d p_true = test::kCentre + Eigen::Vector3d(0, -5, 15), d_p(0.5, -0.4, 0.2);
@@ -60,8 +60,8 @@ TEST_F(RegisterCli, JsonCorrectionUndoesAKnownPoseError) {
   }
   twin::write_ply((dir_ / "cloud.ply").string(), cloud, twin::PlyFormat::kAscii);
   const Eigen::Vector3d p_guess = p_true + d_p;
-  const std::string pose = std::to_string(p_guess.x()) + " " + std::to_string(p_guess.y()) + " " +
-                           std::to_string(p_guess.z()) + " 32";
+  const std::string pose =
+      std::to_string(p_guess.x()) + " " + std::to_string(p_guess.y()) + " " + std::to_string(p_guess.z()) + " 32";
   const auto r = twinslam_cli({"register", "--cloud", (dir_ / "cloud.ply").string(), "--twin", (dir_ / "twin").string(),
                                "--pose", pose, "--repeat", "3", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
@@ -83,7 +83,7 @@ TEST_F(RegisterCli, JsonCorrectionUndoesAKnownPoseError) {
   EXPECT_TRUE(j.contains("rmse_m") && j.contains("fitness"));
 }
 
-TEST_F(RegisterCli, BadInputExitsTwoWithOneLine) {
+TEST_F(RegistrationCli, BadInputExitsTwoWithOneLine) {
   const std::string twin = (dir_ / "twin").string();
   twin::Mesh cloud;
   cloud.p_W = {{0, 0, 0}, {1, 0, 0}};
@@ -94,7 +94,8 @@ TEST_F(RegisterCli, BadInputExitsTwoWithOneLine) {
            {{"--cloud", ply, "--twin", "/nonexistent_twin", "--pose", "0 0 0 0"}, "/nonexistent_twin"},
            {{"--cloud", ply, "--twin", twin, "--pose", "1 2 3"}, "--pose"},
            {{"--cloud", ply, "--twin", twin, "--pose", "1 2 3 x"}, "--pose"},
-           {{"--cloud", ply, "--twin", twin, "--pose", "0 0 0 0", "--config", "/nonexistent.yaml"}, "nonexistent.yaml"}}) {
+           {{"--cloud", ply, "--twin", twin, "--pose", "0 0 0 0", "--config", "/nonexistent.yaml"},
+            "nonexistent.yaml"}}) {
     std::vector<std::string> argv{"register"};
     argv.insert(argv.end(), args.begin(), args.end());
     const auto r = twinslam_cli(argv);

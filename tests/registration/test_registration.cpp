@@ -19,7 +19,8 @@ struct Scene {
   Eigen::Isometry3d error = test::offset_about(kBody, {0.3, -0.2, 1.0}, 3.0, {0.6, -0.7, 0.4});  // |t| ~ 1.0 m
   std::vector<Eigen::Vector3d> landmarks(int inliers, double outlier_fraction, unsigned seed = 11) const {
     auto p = test::sample_noisy(test::city_surfaces(), inliers, 0.1, seed);
-    const auto o = test::sample_outliers(static_cast<int>(inliers * outlier_fraction / (1.0 - outlier_fraction)), seed + 1);
+    const auto o =
+        test::sample_outliers(static_cast<int>(inliers * outlier_fraction / (1.0 - outlier_fraction)), seed + 1);
     p.insert(p.end(), o.begin(), o.end());
     return p;
   }
@@ -123,15 +124,41 @@ TEST(Registration, EveryRejectionReasonIsReachable) {
   rmse.max_rmse_m = 0.02;  // 0.1 m noise
   EXPECT_EQ(status_of(rmse, in), RegistrationStatus::kRmseTooLarge);
   std::vector<test::Rect> ground{test::city_surfaces().front()};  // one plane: 3 unobservable directions
-  EXPECT_EQ(status_of(c, test::make_source(test::sample_noisy(ground, 800, 0.05, 4), Eigen::Isometry3d::Identity(),
-                                           kBody), {}, &why),
-            RegistrationStatus::kDegenerate);
+  EXPECT_EQ(
+      status_of(c, test::make_source(test::sample_noisy(ground, 800, 0.05, 4), Eigen::Isometry3d::Identity(), kBody),
+                {}, &why),
+      RegistrationStatus::kDegenerate);
   EXPECT_EQ(why, "3 poorly observed directions > max_zero_directions 2");
   // The estimator says its pose is good to 1 cm / 0.01 rad: a 1 m correction contradicts it.
   Matrix6d tight = Matrix6d::Identity() * 1e-4;
   EXPECT_EQ(status_of(c, in, tight), RegistrationStatus::kCorrectionTooLarge);
   Matrix6d loose = Matrix6d::Identity();  // 1 rad, 1 m: the correction is plausible
   EXPECT_EQ(status_of(c, in, loose), RegistrationStatus::kAccepted);
+}
+
+TEST(Registration, CorridorIsAcceptedWithNoInformationAlongIt) {
+  // A street canyon (two facades 10 m apart and the road, 120 m long in n): the position along the street is
+  // unobservable. The registration is still useful (cross-street, height, attitude) and the estimator must get exactly
+  // no information along the street, whatever ICP left there.
+  const Eigen::Vector3d o = test::kCentre + Eigen::Vector3d(-5, -60, 0);
+  const std::vector<test::Rect> street{{o, {10, 0, 0}, {0, 120, 0}},
+                                       {o, {0, 120, 0}, {0, 0, 15}},
+                                       {o + Eigen::Vector3d(10, 0, 0), {0, 120, 0}, {0, 0, 15}}};
+  const TwinTileIndex index = test::make_index(test::sample_grid(street, 0.5));
+  const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0, 0, 5);
+  const Eigen::Isometry3d error = test::offset_about(body, {0, 0, 1}, 1.0, {0.3, 0.5, 0.2});
+  const RegistrationResult r = register_cloud(
+      RegistrationConfig{}, index, test::make_source(test::sample_noisy(street, 1500, 0.05, 3), error, body));
+  ASSERT_TRUE(r.accepted()) << r.reason;
+  EXPECT_EQ(r.details.zero_directions, 1);
+  Vector6d along;
+  along << 0, 0, 0, 0, 1, 0;
+  EXPECT_LT((r.information * along).norm(), 1e-9 * r.information.norm());
+  const Eigen::Vector3d err = r.correction_W * (error * body) - body;
+  EXPECT_LT(std::abs(err.x()), 0.02);  // across the street and height: recovered
+  EXPECT_LT(std::abs(err.z()), 0.02);
+  const Eigen::Matrix3d dR = (r.correction_W * error).linear();
+  EXPECT_LT(geometry::so3_log(dR).norm() * 180.0 / M_PI, 0.05);
 }
 
 TEST(Registration, BadInputIsAnInputErrorNotACrash) {
@@ -147,7 +174,7 @@ TEST(Registration, BadInputIsAnInputErrorNotACrash) {
   EXPECT_THROW(register_cloud(RegistrationConfig{}, s.index, in), InputError);
 }
 
-TEST(Preprocess, DropsLowQualityDownsamplesAndRemovesOutliers) {
+TEST(RegistrationPreprocess, DropsLowQualityDownsamplesAndRemovesOutliers) {
   SourceInput in;
   for (int i = 0; i < 200; ++i) in.landmarks.push_back({{0.01 * i, 0.0, 0.0}, i % 2 ? 0.9 : 0.1});  // 2 m line
   in.landmarks.push_back({{1.0, 30.0, 0.0}, 1.0});  // a lone point far from the rest
@@ -157,8 +184,8 @@ TEST(Preprocess, DropsLowQualityDownsamplesAndRemovesOutliers) {
   const SourceCloud out = preprocess(c, in);
   EXPECT_EQ(out.input, 201u);
   EXPECT_EQ(out.after_quality, 101u);
-  EXPECT_EQ(out.after_voxel, 21u);  // 20 voxels of the line + the lone point
-  EXPECT_EQ(out.p_W.size(), 20u);   // the lone point is a statistical outlier
+  EXPECT_EQ(out.after_voxel, 21u);                                 // 20 voxels of the line + the lone point
+  EXPECT_EQ(out.p_W.size(), 20u);                                  // the lone point is a statistical outlier
   for (const auto& p : out.p_W) EXPECT_NEAR(p.y(), 2000.0, 1e-9);  // expressed in W with T_WL
   EXPECT_EQ(out.p_WB, Eigen::Vector3d(1000, 2000, 30));
 }

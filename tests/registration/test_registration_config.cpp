@@ -43,7 +43,8 @@ TEST(RegistrationConfig, ParsesValuesOverBase) {
 TEST(RegistrationConfig, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(message("max_iteration: 3\n").rfind("r.yaml:1: registration key 'max_iteration': unknown key (known: ", 0),
             0u);
-  EXPECT_EQ(message("min_points: 5\nmax_iterations: many\n"), "r.yaml:2: registration key 'max_iterations': expected an integer");
+  EXPECT_EQ(message("min_points: 5\nmax_iterations: many\n"),
+            "r.yaml:2: registration key 'max_iterations': expected an integer");
   EXPECT_EQ(message("weights: robust\n"),
             "r.yaml:1: registration key 'weights': expected paper, adaptive or fixed, got 'robust'");
   EXPECT_EQ(message("min_quality: 1.5\n"), "r.yaml: registration key 'min_quality': must lie in [0, 1], got 1.500000");

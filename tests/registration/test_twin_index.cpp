@@ -34,7 +34,7 @@ void expect_same(const std::optional<TwinMatch>& a, const std::optional<TwinMatc
   EXPECT_EQ(a->distance_m, b->distance_m);
 }
 
-TEST(TwinTileIndex, NearestEqualsBruteForceAcrossTileBorders) {
+TEST(RegistrationTwinIndex, NearestEqualsBruteForceAcrossTileBorders) {
   const PointSet set = test::sample_grid(test::city_surfaces(), 1.0);
   const TwinTileIndex index = test::make_index(set);
   EXPECT_GE(index.tile_count(), 9u);  // the city straddles tile borders
@@ -57,7 +57,7 @@ TEST(TwinTileIndex, NearestEqualsBruteForceAcrossTileBorders) {
   EXPECT_GT(found, 150);
 }
 
-TEST(TwinTileIndex, QueryNearABorderFindsThePointInTheNeighbourTile) {
+TEST(RegistrationTwinIndex, QueryNearABorderFindsThePointInTheNeighbourTile) {
   TwinTileIndex index(50.0);
   index.add_tile({0, 0}, {{49.9, 10.0, 3.0}}, {{1.0, 0.0, 0.0}});
   index.add_tile({1, 0}, {{95.0, 10.0, 3.0}}, {{1.0, 0.0, 0.0}});
@@ -68,7 +68,7 @@ TEST(TwinTileIndex, QueryNearABorderFindsThePointInTheNeighbourTile) {
   EXPECT_FALSE(index.nearest({50.1, 10.0, 3.0}, 0.1).has_value());  // but not beyond max_dist
 }
 
-TEST(TwinTileIndex, IncrementalUpdatesEqualAFreshBuild) {
+TEST(RegistrationTwinIndex, IncrementalUpdatesEqualAFreshBuild) {
   const auto tiles = test::split_tiles(test::sample_grid(test::city_surfaces(), 1.0));
   ASSERT_GE(tiles.size(), 4u);
   auto it = tiles.begin();
@@ -96,7 +96,7 @@ TEST(TwinTileIndex, IncrementalUpdatesEqualAFreshBuild) {
   EXPECT_GT(found, 200);
 }
 
-TEST(TwinTileIndex, BadTilesAreInputErrors) {
+TEST(RegistrationTwinIndex, BadTilesAreInputErrors) {
   TwinTileIndex index(50.0);
   EXPECT_THROW(index.add_tile({0, 0}, {{1, 2, 3}}, {}), InputError);
   EXPECT_THROW(index.add_tile({0, 0}, {{1, 2, 3}}, {{0, 0, 2}}), InputError);
@@ -106,7 +106,7 @@ TEST(TwinTileIndex, BadTilesAreInputErrors) {
   EXPECT_FALSE(index.nearest({1, 2, 3}, 1.0).has_value());
 }
 
-TEST(TwinTileIndex, StoreAndMapTileBytesGiveTheSameIndex) {
+TEST(RegistrationTwinIndex, StoreAndMapTileBytesGiveTheSameIndex) {
   // A 60 m x 60 m ground with one building, as a triangle mesh through `twinslam twin build`'s store writer.
   twin::Mesh mesh;
   auto quad = [&](Eigen::Vector3d o, Eigen::Vector3d u, Eigen::Vector3d v) {
@@ -127,7 +127,8 @@ TEST(TwinTileIndex, StoreAndMapTileBytesGiveTheSameIndex) {
   EXPECT_TRUE(tiles_in_window(store, {500.0, 500.0, 0.0}, 150.0).empty());
   for (const auto& key : keys) {
     add_tile_from_store(from_store, dir.string(), store, key);
-    add_tile_from_draco(from_bytes, key, twin::read_tile_file(dir.string(), key, true));
+    add_tile_from_draco(from_bytes, key, twin::read_tile_file(dir.string(), key, false),
+                        twin::read_tile_file(dir.string(), key, true));
   }
   EXPECT_EQ(from_store.point_count(), store.points);
   const auto m = from_store.nearest({50.0, 45.3, 10.0}, 1.0);  // next to the wall y = 45
@@ -138,7 +139,16 @@ TEST(TwinTileIndex, StoreAndMapTileBytesGiveTheSameIndex) {
     const Eigen::Vector3d qq = q - test::kCentre + Eigen::Vector3d(50, 50, 0);
     expect_same(from_store.nearest(qq, 2.0), from_bytes.nearest(qq, 2.0));
   }
-  EXPECT_THROW(add_tile_from_draco(from_bytes, {0, 0}, {1, 2, 3}), InputError);
+  EXPECT_THROW(add_tile_from_draco(from_bytes, {0, 0}, {}, {1, 2, 3}), InputError);  // corrupt bytes
+  EXPECT_THROW(add_tile_from_draco(from_bytes, {0, 0}, {1, 2, 3}, {}), InputError);  // triangles but no points
+  add_tile_from_draco(from_bytes, {9, 9}, {}, {});                                    // an empty tile is fine
+  EXPECT_TRUE(from_bytes.contains({9, 9}));
+  TwinTileIndex points_only(store.tile_size_m);  // the points-only overload gives the same index
+  for (const auto& key : keys) add_tile_from_draco(points_only, key, twin::read_tile_file(dir.string(), key, true));
+  for (const Eigen::Vector3d& q : random_queries(50, 10)) {
+    const Eigen::Vector3d qq = q - test::kCentre + Eigen::Vector3d(50, 50, 0);
+    expect_same(points_only.nearest(qq, 2.0), from_store.nearest(qq, 2.0));
+  }
   std::filesystem::remove_all(dir);
 }
 

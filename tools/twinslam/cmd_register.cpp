@@ -78,15 +78,19 @@ void print(const RegisterOptions& o, const RegistrationResult& r, double index_m
   const std::vector<double> c = correction_6(r);
   const Vector6d& ev = r.information_eigenvalues;
   if (o.json) {
-    const nlohmann::json j = {
-        {"status", status_name(r.status)},
-        {"correction", c},
-        {"information_eigenvalues", std::vector<double>(ev.data(), ev.data() + 6)},
-        {"rmse_m", r.rmse_m},
-        {"inliers", r.inliers},
-        {"fitness", r.fitness},
-        {"time_ms", {{"index", index_ms}, {"preprocess", med(0)}, {"icp", med(1)}, {"hessian", med(2)},
-                     {"total", med(3)}, {"total_p99", percentile(t[3], 0.99)}}}};
+    const nlohmann::json j = {{"status", status_name(r.status)},
+                              {"correction", c},
+                              {"information_eigenvalues", std::vector<double>(ev.data(), ev.data() + 6)},
+                              {"rmse_m", r.rmse_m},
+                              {"inliers", r.inliers},
+                              {"fitness", r.fitness},
+                              {"time_ms",
+                               {{"index", index_ms},
+                                {"preprocess", med(0)},
+                                {"icp", med(1)},
+                                {"hessian", med(2)},
+                                {"total", med(3)},
+                                {"total_p99", percentile(t[3], 0.99)}}}};
     std::cout << j.dump() << std::endl;  // one object, one line
     return;
   }
@@ -97,8 +101,10 @@ void print(const RegisterOptions& o, const RegistrationResult& r, double index_m
               ev(1), ev(2), ev(3), ev(4), ev(5), r.details.zero_directions, weight_mode_name(make_config(o).weights));
   std::printf("rmse %.4f m, inliers %zu of %zu (fitness %.3f), %d iterations\n", r.rmse_m, r.inliers, r.source_points,
               r.fitness, r.iterations);
-  std::printf("time: index %.2f ms (%zu tiles); median of %d: preprocess %.2f, icp %.2f, hessian %.3f, total %.2f ms; "
-              "total p99 %.2f ms\n", index_ms, tiles, o.repeat, med(0), med(1), med(2), med(3), percentile(t[3], 0.99));
+  std::printf(
+      "time: index %.2f ms (%zu tiles); median of %d: preprocess %.2f, icp %.2f, hessian %.3f, total %.2f ms; "
+      "total p99 %.2f ms\n",
+      index_ms, tiles, o.repeat, med(0), med(1), med(2), med(3), percentile(t[3], 0.99));
 }
 
 int run_register(const RegisterOptions& o) {
@@ -120,8 +126,8 @@ int run_register(const RegisterOptions& o) {
   std::vector<std::vector<double>> t(4);
   for (int i = 0; i < o.repeat; ++i) {
     r = register_cloud(config, index, in);
-    for (auto [k, v] : {std::pair{0, r.time.preprocess_ms}, {1, r.time.icp_ms}, {2, r.time.hessian_ms},
-                        {3, r.time.total_ms}}) {
+    for (auto [k, v] :
+         {std::pair{0, r.time.preprocess_ms}, {1, r.time.icp_ms}, {2, r.time.hessian_ms}, {3, r.time.total_ms}}) {
       t[static_cast<std::size_t>(k)].push_back(v);
     }
   }
@@ -134,8 +140,9 @@ int run_register(const RegisterOptions& o) {
 void add_register_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<RegisterOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "register", "Register a landmark cloud (body frame, PLY) to a twin store around a pose: correction, information, "
-                  "timing (exit 0 also when the registration is rejected: see status)");
+      "register",
+      "Register a landmark cloud (body frame, PLY) to a twin store around a pose: correction, information, "
+      "timing (exit 0 also when the registration is rejected: see status)");
   cmd->add_option("--cloud", o->cloud, "PLY of the landmarks in the body frame [m]")->required()->type_name("FILE.ply");
   cmd->add_option("--twin", o->twin, "Twin store (`twinslam twin build` output)")->required()->type_name("TWIN_DIR");
   cmd->add_option("--pose", o->pose, "Estimated body pose in W: east, north, up [m], yaw [deg]")

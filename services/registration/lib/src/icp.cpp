@@ -96,7 +96,8 @@ void finish(const RegistrationConfig& config, const TwinTileIndex& index, const 
 
 }  // namespace
 
-Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp, const Eigen::Vector3d& pivot_W) {
+Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp,
+                                   const Eigen::Vector3d& pivot_W) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = dR;
   T.translation() = pivot_W + dp - dR * pivot_W;

@@ -24,8 +24,8 @@ void check_input(const SourceInput& in) {
     const Landmark& l = in.landmarks[i];
     if (!l.p_L.allFinite()) throw InputError("registration source: landmark " + std::to_string(i) + " is not finite");
     if (!(l.quality >= 0.0 && l.quality <= 1.0)) {
-      throw InputError("registration source: landmark " + std::to_string(i) + " quality " +
-                       std::to_string(l.quality) + " outside [0, 1]");
+      throw InputError("registration source: landmark " + std::to_string(i) + " quality " + std::to_string(l.quality) +
+                       " outside [0, 1]");
     }
   }
 }
@@ -38,7 +38,8 @@ std::vector<Eigen::Vector3d> voxel_downsample(const std::vector<Eigen::Vector3d>
   std::map<std::tuple<long, long, long>, std::pair<Eigen::Vector3d, int>> cells;
   for (const Eigen::Vector3d& x : p) {
     const Eigen::Vector3d v = (x - pivot) / voxel;
-    auto& cell = cells[{std::lround(std::floor(v.x())), std::lround(std::floor(v.y())), std::lround(std::floor(v.z()))}];
+    auto& cell =
+        cells[{std::lround(std::floor(v.x())), std::lround(std::floor(v.y())), std::lround(std::floor(v.z()))}];
     if (cell.second == 0) cell.first.setZero();
     cell.first += x;
     ++cell.second;

@@ -15,9 +15,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 std::string fmt(const char* format, double a, double b) {
   char buf[200];
@@ -43,8 +41,8 @@ bool reject_fit(const RegistrationConfig& c, const IcpResult& icp, RegistrationR
     return false;
   };
   if (r.inliers < static_cast<std::size_t>(c.min_inliers)) {
-    return fail(RegistrationStatus::kTooFewInliers, fmt("%.0f inliers < min_inliers %.0f",
-                                                        static_cast<double>(r.inliers), c.min_inliers));
+    return fail(RegistrationStatus::kTooFewInliers,
+                fmt("%.0f inliers < min_inliers %.0f", static_cast<double>(r.inliers), c.min_inliers));
   }
   if (!icp.converged) {
     return fail(RegistrationStatus::kNotConverged,
@@ -54,8 +52,8 @@ bool reject_fit(const RegistrationConfig& c, const IcpResult& icp, RegistrationR
     return fail(RegistrationStatus::kFitnessTooLow, fmt("fitness %.3f < min_fitness %.3f", r.fitness, c.min_fitness));
   }
   if (r.rmse_m > c.max_rmse_m) {
-    return fail(RegistrationStatus::kRmseTooLarge, fmt("inlier RMSE %.3f m > max_rmse_m %.3f m", r.rmse_m,
-                                                       c.max_rmse_m));
+    return fail(RegistrationStatus::kRmseTooLarge,
+                fmt("inlier RMSE %.3f m > max_rmse_m %.3f m", r.rmse_m, c.max_rmse_m));
   }
   return true;
 }

@@ -119,8 +119,8 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(std::isfinite(correlation_inflation) && correlation_inflation >= 1.0, s, "correlation_inflation",
         "must be >= 1", correlation_inflation);
   check(pos(min_sigma_m), s, "min_sigma_m", "must be > 0 m", min_sigma_m);
-  check(nonneg(degeneracy_threshold) && degeneracy_threshold < 1.0, s, "degeneracy_threshold",
-        "must lie in [0, 1)", degeneracy_threshold);
+  check(nonneg(degeneracy_threshold) && degeneracy_threshold < 1.0, s, "degeneracy_threshold", "must lie in [0, 1)",
+        degeneracy_threshold);
   check(pos(fixed_rotation_information), s, "fixed_rotation_information", "must be > 0", fixed_rotation_information);
   check(pos(fixed_translation_information), s, "fixed_translation_information", "must be > 0",
         fixed_translation_information);

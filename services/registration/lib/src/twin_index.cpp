@@ -121,7 +121,7 @@ std::optional<TwinMatch> TwinTileIndex::nearest(const Eigen::Vector3d& p_W, doub
 void TwinTileIndex::search_tile(const Tile& t, const Eigen::Vector3d& p_W, double max_sq, double& best_sq,
                                 std::optional<TwinMatch>& best) {
   if (t.cloud->empty()) return;
-    if (box_distance_sq(t.bounds_W, p_W) > std::min(max_sq, best_sq)) return;
+  if (box_distance_sq(t.bounds_W, p_W) > std::min(max_sq, best_sq)) return;
   const Eigen::Vector3f q = (p_W - t.origin_W).cast<float>();
   thread_local pcl::Indices idx(1);
   thread_local std::vector<float> dist(1);

@@ -23,13 +23,19 @@ void add_tile_from_store(TwinTileIndex& index, const std::string& twin_dir, cons
   add_points(index, key, tile.points_W, twin_dir + ": tile " + key.str());
 }
 
-void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& points_draco) {
+void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& mesh_draco,
+                         const std::vector<std::uint8_t>& points_draco) {
   const std::string what = "MapTile " + key.str() + " points_draco";
   if (points_draco.empty()) {
+    if (!mesh_draco.empty()) throw InputError(what + ": empty, but the tile has triangles");
     index.add_tile(key, {}, {});
     return;
   }
   add_points(index, key, twin::decode_draco(points_draco.data(), points_draco.size(), what), what);
+}
+
+void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& points_draco) {
+  add_tile_from_draco(index, key, {}, points_draco);
 }
 
 std::vector<twin::TileKey> tiles_in_window(const twin::TwinIndex& store, const Eigen::Vector3d& p_W, double window_m) {

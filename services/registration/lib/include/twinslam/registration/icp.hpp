@@ -26,29 +26,30 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 struct Correspondence {
-  Eigen::Vector3d a;        // source point with the current correction, relative to the pivot: dR a_j + dp [m]
-  Eigen::Vector3d b;        // twin point relative to the pivot [m]
-  Eigen::Vector3d n;        // twin normal (unit)
-  double residual = 0.0;    // n . (a - b): the point-to-plane residual of eq. (2) [m]
-  double distance = 0.0;    // |a - b| [m]
+  Eigen::Vector3d a;      // source point with the current correction, relative to the pivot: dR a_j + dp [m]
+  Eigen::Vector3d b;      // twin point relative to the pivot [m]
+  Eigen::Vector3d n;      // twin normal (unit)
+  double residual = 0.0;  // n . (a - b): the point-to-plane residual of eq. (2) [m]
+  double distance = 0.0;  // |a - b| [m]
 };
 
 struct IcpResult {
-  Eigen::Matrix3d dR = Eigen::Matrix3d::Identity();  // rotation about the pivot (see above)
-  Eigen::Vector3d dp = Eigen::Vector3d::Zero();      // translation of the pivot [m, W]
+  Eigen::Matrix3d dR = Eigen::Matrix3d::Identity();                // rotation about the pivot (see above)
+  Eigen::Vector3d dp = Eigen::Vector3d::Zero();                    // translation of the pivot [m, W]
   Eigen::Isometry3d correction_W = Eigen::Isometry3d::Identity();  // [dR | c + dp - dR c], dT of eq. (3)
-  Eigen::Vector3d pivot_W = Eigen::Vector3d::Zero(); // c [m, W]
+  Eigen::Vector3d pivot_W = Eigen::Vector3d::Zero();               // c [m, W]
   int iterations = 0;
-  bool converged = false;            // the last update was below the convergence thresholds
-  double threshold_m = 0.0;          // the final correspondence gate [m]
-  double sigma_m = 0.0;              // robust sigma of the final point-to-plane residuals [m]
+  bool converged = false;               // the last update was below the convergence thresholds
+  double threshold_m = 0.0;             // the final correspondence gate [m]
+  double sigma_m = 0.0;                 // robust sigma of the final point-to-plane residuals [m]
   std::vector<Correspondence> inliers;  // at the final correction: distance <= gate and |r| <= 3 sigma
-  std::size_t correspondences = 0;   // at the final correction within the gate (inliers and the rest)
-  double rmse_m = 0.0;               // RMSE of the inliers' point-to-plane residuals (gamma of eq. 10) [m]
+  std::size_t correspondences = 0;      // at the final correction within the gate (inliers and the rest)
+  double rmse_m = 0.0;                  // RMSE of the inliers' point-to-plane residuals (gamma of eq. 10) [m]
 };
 
 // The correction as a transform of W: x' = dR (x - pivot) + pivot + dp.
-Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp, const Eigen::Vector3d& pivot_W);
+Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp,
+                                   const Eigen::Vector3d& pivot_W);
 
 // Starts at the identity correction (the estimator's T_WL as it is). Deterministic.
 IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,

@@ -5,10 +5,11 @@
 // order of idl Registration.information; note that twinslam_geometry's se3 tangent is (translation, rotation)). A
 // perturbation xi of the correction acts on world points as  x'' = Exp(w) (x' - c) + c + v  (x' a corrected point)
 // about the keyframe body position c = p_WB (icp.hpp), so for the keyframe pose (eq. 5, T_WB = dT T~_WB):
-// R_WB <- Exp(w) R_WB (w: a world-frame rotation about the body, a left perturbation of R_WB), p_WB <- p_WB + v. With T~_WB the keyframe
-// pose the cloud was expressed with (T_WL T_LB of the input), the measurement is R^_WB = dR R~_WB, p^_WB = p~_WB + dp,
-// and the estimator's factor is e = (Log(R_WB R^_WB^T), p_WB - p^_WB) (rotation first) with `information` below.
-// The rotation acts about p_WB, not about W's origin: that is what keeps e's rotation and translation decoupled.
+// R_WB <- Exp(w) R_WB (w: a world-frame rotation about the body, a left perturbation of R_WB), p_WB <- p_WB + v. With
+// T~_WB the keyframe pose the cloud was expressed with (T_WL T_LB of the input), the measurement is R^_WB = dR R~_WB,
+// p^_WB = p~_WB + dp, and the estimator's factor is e = (Log(R_WB R^_WB^T), p_WB - p^_WB) (rotation first) with
+// `information` below. The rotation acts about p_WB, not about W's origin: that is what keeps e's rotation and
+// translation decoupled.
 //
 // H (eqs. 8-9) = sum_j A_j^T A_j over the inliers, A_j = [(a_j x n_j)^T, n_j^T] with a_j relative to c and a x n NOT
 // normalized: units [m^2] in the rotation block, [m] off-diagonal, [1] in the translation block.
@@ -22,17 +23,17 @@ namespace twinslam::registration {
 
 struct Information {
   Matrix6d H = Matrix6d::Zero();            // eq. (9), unweighted, (rotation, translation)
-  Matrix6d information = Matrix6d::Zero(); // the weight W_m of the selected mode, (rotation, translation)
+  Matrix6d information = Matrix6d::Zero();  // the weight W_m of the selected mode, (rotation, translation)
   // Eigen-analysis of the per-point normalized H: Hn = S H S / N, S = diag(1/L, 1/L, 1/L, 1, 1, 1), L = RMS distance
   // of the inliers from c. Scaling rotation by L makes the blocks comparable (a rotation w moves points by ~L |w|), and
   // dividing by N makes the value a per-point observability in [0, 1] (translation: the mean of n n^T), independent of
   // how many landmarks the keyframe has.
-  Vector6d eigenvalues = Vector6d::Zero();   // of Hn, ascending [-]
-  Matrix6d directions = Matrix6d::Zero();    // column i: unit direction in xi space (= S u_i normalized) of eigenvalue i
-  std::array<bool, 6> zeroed{};              // eigenvalue i < degeneracy_threshold
-  int zero_directions = 0;                   // how many are zeroed
-  double length_scale_m = 1.0;               // L (at least 1 m)
-  double sigma_sq = 0.0;                     // paper: trace(H) (eq. 10's sigma^2); adaptive: the residual variance [m^2]
+  Vector6d eigenvalues = Vector6d::Zero();  // of Hn, ascending [-]
+  Matrix6d directions = Matrix6d::Zero();   // column i: unit direction in xi space (= S u_i normalized) of eigenvalue i
+  std::array<bool, 6> zeroed{};             // eigenvalue i < degeneracy_threshold
+  int zero_directions = 0;                  // how many are zeroed
+  double length_scale_m = 1.0;              // L (at least 1 m)
+  double sigma_sq = 0.0;                    // paper: trace(H) (eq. 10's sigma^2); adaptive: the residual variance [m^2]
 };
 
 // eq. (8)-(9): sum of A_j^T A_j over the correspondences.

@@ -26,7 +26,7 @@ struct SourceInput {
 };
 
 struct SourceCloud {
-  std::vector<Eigen::Vector3d> p_W;   // preprocessed landmarks in W with the guess: p_W = T_WL p_L [m]
+  std::vector<Eigen::Vector3d> p_W;                // preprocessed landmarks in W with the guess: p_W = T_WL p_L [m]
   Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();  // keyframe body position in W (T_WL T_LB): ICP's pivot [m]
   std::size_t input = 0, after_quality = 0, after_voxel = 0;  // counts after each step (p_W.size() is the last)
 };

@@ -15,13 +15,13 @@ namespace twinslam::registration {
 
 enum class RegistrationStatus {
   kAccepted,
-  kTooFewPoints,         // source points after preprocessing < min_points
-  kNotConverged,         // ICP hit max_iterations (or lost its correspondences) before the update was small
-  kTooFewInliers,        // inliers < min_inliers (also: no twin near the cloud)
-  kFitnessTooLow,        // inliers / source points < min_fitness
-  kRmseTooLarge,         // inlier RMSE > max_rmse_m
-  kDegenerate,           // more than max_zero_directions poorly observed directions
-  kCorrectionTooLarge,   // Mahalanobis distance of the correction under the prior covariance > max_mahalanobis_sq
+  kTooFewPoints,        // source points after preprocessing < min_points
+  kNotConverged,        // ICP hit max_iterations (or lost its correspondences) before the update was small
+  kTooFewInliers,       // inliers < min_inliers (also: no twin near the cloud)
+  kFitnessTooLow,       // inliers / source points < min_fitness
+  kRmseTooLarge,        // inlier RMSE > max_rmse_m
+  kDegenerate,          // more than max_zero_directions poorly observed directions
+  kCorrectionTooLarge,  // Mahalanobis distance of the correction under the prior covariance > max_mahalanobis_sq
 };
 const char* status_name(RegistrationStatus status);  // "accepted", "too_few_points", ...
 
@@ -31,17 +31,17 @@ struct StageTimes {
 
 struct RegistrationResult {
   RegistrationStatus status = RegistrationStatus::kTooFewPoints;
-  std::string reason;                     // empty when accepted
+  std::string reason;                                              // empty when accepted
   Eigen::Isometry3d correction_W = Eigen::Isometry3d::Identity();  // dT of eq. (3) (icp.hpp: pivot and convention)
   Eigen::Vector3d pivot_W = Eigen::Vector3d::Zero();               // keyframe body position c [m, W]
-  Vector6d correction_xi = Vector6d::Zero();   // (Log dR [rad], dp [m]) about the pivot, (rotation, translation)
-  Matrix6d information = Matrix6d::Zero();     // W_m, (rotation, translation); zero unless accepted
+  Vector6d correction_xi = Vector6d::Zero();  // (Log dR [rad], dp [m]) about the pivot, (rotation, translation)
+  Matrix6d information = Matrix6d::Zero();    // W_m, (rotation, translation); zero unless accepted
   Vector6d information_eigenvalues = Vector6d::Zero();  // of the per-point normalized H, ascending (information.hpp)
-  Information details;                   // H, eigen-directions, which were zeroed
-  double mahalanobis_sq = 0.0;           // xi^T Sigma^-1 xi when a prior covariance was given
+  Information details;                                  // H, eigen-directions, which were zeroed
+  double mahalanobis_sq = 0.0;                          // xi^T Sigma^-1 xi when a prior covariance was given
   double rmse_m = 0.0;
   std::size_t source_points = 0, inliers = 0;
-  double fitness = 0.0;                  // inliers / source points
+  double fitness = 0.0;  // inliers / source points
   int iterations = 0;
   StageTimes time;
 

@@ -17,17 +17,17 @@ const char* weight_mode_name(WeightMode mode);  // "paper", "adaptive", "fixed"
 
 struct RegistrationConfig {
   // --- source cloud (preprocess.hpp) ---
-  double min_quality = 0.5;         // landmarks with quality < this are dropped, quality in [0, 1]
-  double voxel_size_m = 0.3;        // voxel downsampling edge [m]; 0 disables (one centroid per voxel)
-  int outlier_neighbors = 8;        // statistical outlier removal: neighbours per point; 0 disables
-  double outlier_stddev = 2.0;      // ... drop points whose mean neighbour distance > mean + this * stddev
-  int min_points = 30;              // fewer source points after preprocessing: rejected (too few points)
+  double min_quality = 0.5;     // landmarks with quality < this are dropped, quality in [0, 1]
+  double voxel_size_m = 0.3;    // voxel downsampling edge [m]; 0 disables (one centroid per voxel)
+  int outlier_neighbors = 8;    // statistical outlier removal: neighbours per point; 0 disables
+  double outlier_stddev = 2.0;  // ... drop points whose mean neighbour distance > mean + this * stddev
+  int min_points = 30;          // fewer source points after preprocessing: rejected (too few points)
 
   // --- ICP (icp.hpp), eq. (2) ---
-  int max_iterations = 30;              // Gauss-Newton iterations at most
-  double initial_threshold_m = 3.0;     // correspondence gate at the first iteration [m] (>= expected drift)
-  double min_threshold_m = 0.25;        // the adaptive gate never shrinks below this [m] (~ twin point spacing / 2)
-  double threshold_sigmas = 3.0;        // gate = this * robust sigma of the correspondence distances (KISS-ICP: 3)
+  int max_iterations = 30;                  // Gauss-Newton iterations at most
+  double initial_threshold_m = 3.0;         // correspondence gate at the first iteration [m] (>= expected drift)
+  double min_threshold_m = 0.25;            // the adaptive gate never shrinks below this [m] (~ twin point spacing / 2)
+  double threshold_sigmas = 3.0;            // gate = this * robust sigma of the correspondence distances (KISS-ICP: 3)
   double convergence_translation_m = 1e-4;  // converged when the update's translation is below this [m] ...
   double convergence_rotation_deg = 1e-3;   // ... and its rotation below this [deg]
 
@@ -38,15 +38,15 @@ struct RegistrationConfig {
                                         // twin's modelling error are correlated: N points are not N independent looks
   double min_sigma_m = 0.02;            // adaptive: floor of the residual sigma [m] (noise-free input stays finite)
   double degeneracy_threshold = 0.01;   // eigenvalue of the per-point normalized H below this: direction zeroed [-]
-  double fixed_rotation_information = 1e4;    // fixed: diagonal for rotation [1/rad^2]
-  double fixed_translation_information = 1e2; // fixed: diagonal for translation [1/m^2]
+  double fixed_rotation_information = 1e4;     // fixed: diagonal for rotation [1/rad^2]
+  double fixed_translation_information = 1e2;  // fixed: diagonal for translation [1/m^2]
 
   // --- acceptance (registration.hpp) ---
-  int min_inliers = 30;                 // fewer inliers at the end: rejected
-  double min_fitness = 0.3;             // inliers / source points below this: rejected [-]
-  double max_rmse_m = 0.3;              // inlier point-to-plane RMSE above this: rejected [m]
-  int max_zero_directions = 2;          // more poorly observed directions than this: rejected (degenerate)
-  double max_mahalanobis_sq = 22.46;    // correction vs the estimator's covariance: chi^2(6 dof) at 99.9 %
+  int min_inliers = 30;               // fewer inliers at the end: rejected
+  double min_fitness = 0.3;           // inliers / source points below this: rejected [-]
+  double max_rmse_m = 0.3;            // inlier point-to-plane RMSE above this: rejected [m]
+  int max_zero_directions = 2;        // more poorly observed directions than this: rejected (degenerate)
+  double max_mahalanobis_sq = 22.46;  // correction vs the estimator's covariance: chi^2(6 dof) at 99.9 %
 
   bool operator==(const RegistrationConfig&) const = default;
 

@@ -22,9 +22,9 @@
 namespace twinslam::registration {
 
 struct TwinMatch {
-  Eigen::Vector3d p_W;        // nearest twin point [m, W]
-  Eigen::Vector3d n_W;        // its unit normal [W]
-  double distance_m = 0.0;    // |p_W - query| [m]
+  Eigen::Vector3d p_W;      // nearest twin point [m, W]
+  Eigen::Vector3d n_W;      // its unit normal [W]
+  double distance_m = 0.0;  // |p_W - query| [m]
 };
 
 class TwinTileIndex {
@@ -40,16 +40,15 @@ class TwinTileIndex {
                 const std::vector<Eigen::Vector3d>& normals_W);
   bool remove_tile(const twin::TileKey& key);  // false if the tile was not there
   bool contains(const twin::TileKey& key) const;
-  std::vector<twin::TileKey> keys() const;     // sorted
+  std::vector<twin::TileKey> keys() const;  // sorted
   std::size_t tile_count() const;
   std::size_t point_count() const;
   double tile_size_m() const { return tile_size_m_; }
-  std::size_t memory_bytes() const;            // points, normals and trees held (estimate)
+  std::size_t memory_bytes() const;  // points, normals and trees held (estimate)
 
   // Nearest twin point within max_dist_m of p_W (over all tiles), or nothing.
   std::optional<TwinMatch> nearest(const Eigen::Vector3d& p_W, double max_dist_m) const;
-  std::vector<std::optional<TwinMatch>> nearest_batch(const std::vector<Eigen::Vector3d>& p_W,
-                                                      double max_dist_m) const;
+  std::vector<std::optional<TwinMatch>> nearest_batch(const std::vector<Eigen::Vector3d>& p_W, double max_dist_m) const;
 
   struct Tile;  // defined in twin_index.cpp (PCL stays out of this header)
 
@@ -63,9 +62,13 @@ class TwinTileIndex {
 // Loads a stored tile's point sampling with normals (twin::load_tile) into the index; InputError as load_tile.
 void add_tile_from_store(TwinTileIndex& index, const std::string& twin_dir, const twin::TwinIndex& store,
                          const twin::TileKey& key);
-// The point-sampling Draco buffer of a MapTile message (`points_draco`, what the DDS node receives). Only the point
-// sampling is indexed: ICP needs points with normals, the message's triangle mesh is not used. An empty buffer adds an
-// empty tile. InputError names the tile on bad bytes or missing normals.
+// The two Draco buffers of a MapTile message (what the DDS node receives). ICP needs points with normals, so only
+// `points_draco` is indexed; `mesh_draco` is not decoded (the store samples points on every triangle, so a tile with
+// triangles always has points). Empty `points_draco`: an empty tile if the mesh is empty too, else InputError (the
+// tile would look like free space to ICP). InputError names the tile on bad bytes or points without normals.
+void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& mesh_draco,
+                         const std::vector<std::uint8_t>& points_draco);
+// Only the point buffer (empty: an empty tile), for callers that hold no mesh (WindowedTwin keeps only the points).
 void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const std::vector<std::uint8_t>& points_draco);
 
 // Keys of the stored tiles that overlap the square window of side window_m centred on (e, n) of p_W (the paper's
