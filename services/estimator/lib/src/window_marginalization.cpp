@@ -38,20 +38,21 @@ void reanchor_landmarks(WindowState& s, const WindowFrame& k0) {
 MarginalizationSelection select_for_marginalization(WindowState& s, const std::vector<ResidualTerm>& terms) {
   WindowFrame& k0 = *s.frames.front();
   MarginalizationSelection sel;
-  // The inverse depths anchored in k0 (every landmark k0 sees is anchored there: anchors are the first observing
-  // keyframe), once some term uses them.
-  for (auto& [id, lm] : s.landmarks) {
-    if (lm.lm.anchor_keyframe != k0.id) continue;
-    const bool used = std::any_of(terms.begin(), terms.end(), [&](const ResidualTerm& t) { return touches(t, &lm.rho); });
-    if (used) sel.blocks.push_back(&lm.rho);
-  }
-  sel.blocks.push_back(k0.pose.data());
-  sel.blocks.push_back(k0.speed_bias.data());
+  // One pass over the list. Every landmark k0 sees is anchored there (anchors are the first observing keyframe), so
+  // the inverse depths to eliminate are those of the reprojection terms anchored in k0, in the list's (landmark) order.
+  std::vector<double*> depths;
   for (const auto& t : terms) {
     const bool on_k0 = touches(t, k0.pose.data()) || touches(t, k0.speed_bias.data());
     // The previous prior is replaced by the new one, so it goes in whole even where it does not touch k0.
     if (on_k0 || t.kind == TermKind::kMarginalizationPrior) sel.terms.push_back(t);
+    if (on_k0 && t.kind == TermKind::kReprojection && t.blocks[0] == k0.pose.data() &&
+        (depths.empty() || depths.back() != t.blocks[2])) {
+      depths.push_back(t.blocks[2]);
+    }
   }
+  sel.blocks = std::move(depths);
+  sel.blocks.push_back(k0.pose.data());
+  sel.blocks.push_back(k0.speed_bias.data());
   return sel;
 }
 
