@@ -9,7 +9,7 @@
 // N of the same keyframes: +-350 m crop, KD-tree rebuilt per call, PCL IterativeClosestPointWithNormals, 25
 // iterations, 8 m max correspondence distance. A third (`--serve DIR probe N`) compares the index's structure with a
 // voxel hash (index_probe.cpp).
-// Usage: bench_registration [--sizes 1000,5000] [--spacing M] [--keyframes K] [--pcl-keyframes N]
+// Usage: bench_registration [--sizes 1000,5000] [--spacing M] [--keyframes K] [--pcl-keyframes N] [--keep DIR]
 #include <unistd.h>
 #include <algorithm>
 #include <chrono>
@@ -193,6 +193,7 @@ int main(int argc, char** argv) {
   double spacing_m = 1.0;
   int keyframes = 150, pcl_keyframes = 10;
   std::vector<double> sizes{1000, 5000};
+  std::string keep;  // --keep DIR: leave the cities' stores and keyframes there (profiling: --serve DIR/1000 ours)
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--sizes")
@@ -203,13 +204,17 @@ int main(int argc, char** argv) {
       keyframes = std::stoi(value);
     else if (flag == "--pcl-keyframes")
       pcl_keyframes = std::stoi(value);
+    else if (flag == "--keep")
+      keep = value;
     else {
       std::fprintf(stderr,
-                   "usage: bench_registration [--sizes S,S] [--spacing M] [--keyframes K] [--pcl-keyframes N]\n");
+                   "usage: bench_registration [--sizes S,S] [--spacing M] [--keyframes K] [--pcl-keyframes N] [--keep DIR]\n");
       return 2;
     }
   }
-  const fs::path root = fs::temp_directory_path() / ("twinslam_bench_registration_" + std::to_string(::getpid()));
+  const fs::path root = keep.empty()
+                            ? fs::temp_directory_path() / ("twinslam_bench_registration_" + std::to_string(::getpid()))
+                            : fs::path(keep);
   std::vector<Row> rows;
   for (double s : sizes) {
     const fs::path dir = root / std::to_string(static_cast<int>(s));
@@ -221,9 +226,9 @@ int main(int argc, char** argv) {
     child(dir.string() + " pcl " + std::to_string(pcl_keyframes), r.pcl);
     child(dir.string() + " probe 20", r.probe);
     rows.push_back(r);
-    fs::remove_all(dir);  // disk space: one city at a time
+    if (keep.empty()) fs::remove_all(dir);  // disk space: one city at a time
   }
-  fs::remove_all(root);
+  if (keep.empty()) fs::remove_all(root);
   print(rows, spacing_m);
   return 0;
 }

@@ -2,9 +2,11 @@
 #include <malloc.h>
 #include <chrono>
 #include <cstdio>
+#include <set>
 
 #include "keyframes.hpp"
 #include "twinslam/registration/registration.hpp"
+#include "twinslam/registration/windowed_twin.hpp"
 
 namespace twinslam::registration::bench {
 namespace {
@@ -12,16 +14,20 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms(Clock::time_point a) { return std::chrono::duration<double, std::milli>(Clock::now() - a).count(); }
 
-// The index follows the keyframe's 150 m window: drop tiles that left, decode and index those that entered.
-void update_window(TwinTileIndex& index, const twin::TwinIndex& store, const std::string& dir,
-                   const Eigen::Vector3d& p) {
-  const std::vector<twin::TileKey> want = tiles_in_window(store, p, 150.0);
-  for (const twin::TileKey& k : index.keys()) {
-    if (!std::binary_search(want.begin(), want.end(), k)) index.remove_tile(k);
+// What the tiles service does for the registration: every tile of its window (250 m, tiles_config.hpp) around the
+// vehicle is sent once; the registration keeps it compressed (WindowedTwin). Returns the time of taking them in [ms]
+// (the file reads, the tiles service's part, are not counted).
+double receive_tiles(WindowedTwin& twin, const twin::TwinIndex& store, const std::string& dir, const Eigen::Vector3d& p,
+                     std::set<twin::TileKey>& sent) {
+  double ms_in = 0.0;
+  for (const twin::TileKey& k : tiles_in_window(store, p, 250.0)) {
+    if (!sent.insert(k).second) continue;
+    std::vector<std::uint8_t> bytes = twin::read_tile_file(dir, k, true);
+    const auto t0 = Clock::now();
+    twin.add_tile(k, store.find(k)->bounds_W, std::move(bytes));
+    ms_in += ms(t0);
   }
-  for (const twin::TileKey& k : want) {
-    if (!index.contains(k)) add_tile_from_store(index, dir, store, k);
-  }
+  return ms_in;
 }
 
 }  // namespace
@@ -38,14 +44,15 @@ int serve_ours(const std::string& dir) {
   ::malloc_trim(0);
   const double rss0 = rss_mb();
   const RegistrationConfig config;
-  TwinTileIndex index(store.tile_size_m);
+  WindowedTwin windowed(store.tile_size_m, 150.0);  // the service's defaults: 50 m prefetch ring, 1 tile per update
+  const TwinTileIndex& index = windowed.index();
+  std::set<twin::TileKey> sent;
   std::vector<double> all, upd, pre, icp, hes, err, pts, its, per;
   double index_mb = 0;
   for (const Keyframe& k : kfs) {
     const Eigen::Vector3d c = k.drift * k.p_WB_true;
-    const auto t0 = Clock::now();
-    update_window(index, store, twin_dir, c);
-    upd.push_back(ms(t0));
+    const double in_ms = receive_tiles(windowed, store, twin_dir, c, sent);
+    upd.push_back(in_ms + windowed.update("bench", c).update_ms);
     SourceInput in;
     for (const auto& p : k.p_guess_W) in.landmarks.push_back({p, 1.0});
     in.T_LB.translation() = c;

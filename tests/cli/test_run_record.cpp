@@ -34,11 +34,13 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   r.stamp_ns = 1'100'000'000LL;
   r.accepted = true;
   r.info_eigenvalues << 1, 2, 3, 4, 5, 6;
-  rec.registration(r);
+  rec.local_map(r.stamp_ns, 500.0);
+  rec.local_map(r.stamp_ns, 900.0);  // a re-delivery: the first sighting counts
+  rec.registration(r, 512.5);
   cli::RegistrationRecord rejected;
   rejected.stamp_ns = 1'200'000'000LL;
   rejected.reason = "rmse 0.41 m > 0.3 m, 12 inliers";  // a comma would split the field: written as ';'
-  rec.registration(rejected);
+  rec.registration(rejected, 600.0);  // its LocalMap was never seen: no latency
   const fs::path dir = fs::temp_directory_path() / ("twinslam_runrec_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const auto files = rec.write(dir);
@@ -63,20 +65,26 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   });
   EXPECT_EQ(rows, 6u);  // every frame has a timing row, estimated or not
   std::size_t regs = 0;
-  read_csv(dir / "registrations.csv", 20, [&](const CsvRow& row) {
+  read_csv(dir / "registrations.csv", 21, [&](const CsvRow& row) {
     if (row.line == 1) {
-      EXPECT_EQ(row.cells[19], "reason");
+      EXPECT_EQ(row.cells[19], "pipeline_latency_ms");
+      EXPECT_EQ(row.cells[20], "reason");
       return;
     }
     if (regs++ == 0) {
       EXPECT_EQ(row.cells[1], "1");
       EXPECT_EQ(row.cells[11], "6");
+      EXPECT_EQ(row.cells[19], "12.5");
     } else {
       EXPECT_EQ(row.cells[1], "0");
-      EXPECT_EQ(row.cells[19], "rmse 0.41 m > 0.3 m; 12 inliers");
+      EXPECT_EQ(row.cells[19], "");
+      EXPECT_EQ(row.cells[20], "rmse 0.41 m > 0.3 m; 12 inliers");
     }
   });
   EXPECT_EQ(regs, 2u);
+  const auto latency = rec.pipeline_latency();
+  EXPECT_EQ(latency.count, 1u);
+  EXPECT_DOUBLE_EQ(latency.median_ms, 12.5);
   fs::remove_all(dir);
 }
 

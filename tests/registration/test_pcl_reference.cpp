@@ -1,7 +1,9 @@
 // Reference: PCL's point-to-plane ICP (IterativeClosestPointWithNormals) on the same preprocessed cloud and the same
-// twin points reaches the same correction as ours. Its own binary: PCL's registration headers cost ~24 s to compile.
+// twin points reaches the same correction as ours; PCL's StatisticalOutlierRemoval keeps the same points as our
+// statistical_inliers. Its own binary: PCL's registration headers cost ~24 s to compile.
 #include <gtest/gtest.h>
 
+#include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/registration/icp.h>
@@ -23,6 +25,34 @@ pcl::PointCloud<pcl::PointNormal>::Ptr to_pcl(const std::vector<Eigen::Vector3d>
     cloud->push_back(q);
   }
   return cloud;
+}
+
+TEST(RegistrationPclReference, StatisticalOutlierRemovalKeepsTheSamePointsAsPcl) {
+  const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0.0, -5.0, 15.0);
+  for (const int seed : {31, 32, 33}) {
+    auto p = test::sample_noisy(test::city_surfaces(), 1200, 0.1, seed);
+    const auto o = test::sample_outliers(150, seed + 100);
+    p.insert(p.end(), o.begin(), o.end());
+    for (const int k : {4, 8, 16}) {
+      auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+      for (const auto& x : p) {
+        const Eigen::Vector3f q = (x - body).cast<float>();
+        cloud->push_back(pcl::PointXYZ(q.x(), q.y(), q.z()));
+      }
+      pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+      sor.setInputCloud(cloud);
+      sor.setMeanK(k);
+      sor.setStddevMulThresh(2.0);
+      pcl::Indices pcl_kept;
+      sor.filter(pcl_kept);
+      const std::vector<std::size_t> ours = statistical_inliers(p, body, k, 2.0);
+      ASSERT_LT(ours.size(), p.size()) << "the outliers must remove something";
+      // Same definition, same float input; the two KD-trees may order equidistant neighbours differently, which
+      // cannot change a mean distance: the kept sets must be equal.
+      ASSERT_EQ(ours.size(), pcl_kept.size()) << "seed " << seed << " k " << k;
+      for (std::size_t i = 0; i < ours.size(); ++i) EXPECT_EQ(ours[i], static_cast<std::size_t>(pcl_kept[i]));
+    }
+  }
 }
 
 TEST(RegistrationPclReference, PointToPlaneIcpWithNormalsAgreesWithOurs) {

@@ -36,7 +36,7 @@ Eigen::AlignedBox3d bounds(const test::PointSet& t) {
 
 TEST(WindowedTwin, IndexesOnlyTheTilesNearAVehicleAndMatchesAFreshIndex) {
   const auto tiles = test::split_tiles(test::sample_grid(test::city_surfaces(), 1.0));
-  WindowedTwin twin(50.0, 60.0);  // +-30 m around the vehicle
+  WindowedTwin twin(50.0, 60.0, 4096, 0.0);  // +-30 m around the vehicle, no prefetch ring
   for (const auto& [key, t] : tiles) twin.add_tile(key, bounds(t), encode(t));
   const Eigen::Vector3d at = test::kCentre + Eigen::Vector3d(-35, -35, 5);
   const auto stats = twin.update("uav0", at);
@@ -62,6 +62,51 @@ TEST(WindowedTwin, IndexesOnlyTheTilesNearAVehicleAndMatchesAFreshIndex) {
   EXPECT_GT(moved.added, 0u);
   EXPECT_FALSE(twin.covers(at, 5.0));
   EXPECT_EQ(twin.stored_tiles(), tiles.size());  // compressed tiles are kept for a return
+}
+
+// Square-metric horizontal distance of a tile's content from p [m].
+double square_distance(const test::PointSet& t, const Eigen::Vector3d& p) {
+  const Eigen::AlignedBox3d b = bounds(t);
+  return std::max(std::max({b.min().x() - p.x(), 0.0, p.x() - b.max().x()}),
+                  std::max({b.min().y() - p.y(), 0.0, p.y() - b.max().y()}));
+}
+
+TEST(WindowedTwin, PrefetchesTheRingAroundTheWindowAFewTilesPerUpdateNearestFirst) {
+  const auto tiles = test::split_tiles(test::sample_grid(test::city_surfaces(), 1.0));
+  WindowedTwin twin(50.0, 20.0, 4096, 40.0, 1);  // window +-10 m, ring out to 50 m, one ring tile per update
+  for (const auto& [key, t] : tiles) twin.add_tile(key, bounds(t), encode(t));
+  const Eigen::Vector3d at = test::kCentre + Eigen::Vector3d(-35, -35, 5);
+  std::size_t in_window = 0, in_ring = 0;
+  for (const auto& [key, t] : tiles) {
+    const double d = square_distance(t, at);
+    in_window += d <= 10.0;
+    in_ring += d > 10.0 && d <= 50.0;
+  }
+  ASSERT_GT(in_ring, 1u);  // the test needs a ring of several tiles
+  // Every tile of the window at once, and one ring tile per update after that.
+  const auto first = twin.update("uav0", at);
+  EXPECT_EQ(first.added, in_window + 1);
+  EXPECT_EQ(first.prefetched, 1u);
+  for (std::size_t k = 1; k < in_ring; ++k) {
+    const auto next = twin.update("uav0", at);
+    EXPECT_EQ(next.added, 1u);
+    EXPECT_EQ(next.prefetched, 1u);
+  }
+  EXPECT_EQ(twin.update("uav0", at).added, 0u);
+  EXPECT_EQ(twin.index().tile_count(), in_window + in_ring);
+  // Leaving: tiles farther than window + ring are dropped; the index still equals a fresh one on its tiles.
+  const Eigen::Vector3d far = test::kCentre + Eigen::Vector3d(60, 60, 5);
+  twin.update("uav0", far);
+  TwinTileIndex fresh(50.0);
+  for (const auto& key : twin.index().keys()) {
+    EXPECT_LE(square_distance(tiles.at(key), far), 50.0);
+    fresh.add_tile(key, tiles.at(key).p_W, tiles.at(key).n_W);
+  }
+  for (const auto& q : test::sample_noisy(test::city_surfaces(), 200, 0.3, 5)) {
+    const auto a = twin.index().nearest(q, 2.0), b = fresh.nearest(q, 2.0);
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (a) EXPECT_NEAR(a->distance_m, b->distance_m, 1e-4);
+  }
 }
 
 class RegistrationNodeTest : public ::testing::Test {

@@ -80,7 +80,7 @@ TEST(TilesConfig, YamlAndValidation) {
   EXPECT_EQ(c.twin_dir, "/data/twin");
   TilesConfig base;
   base.twin_dir = "/x";
-  EXPECT_EQ(parse_tiles_config("", "t.yaml", base).window_m, 150.0);  // defaults kept
+  EXPECT_EQ(parse_tiles_config("", "t.yaml", base).window_m, 250.0);  // defaults kept
   auto message = [&](const std::string& text) {
     try {
       parse_tiles_config(text, "t.yaml", base).validate("t.yaml");

@@ -54,6 +54,7 @@ class TilesNodeTest : public ::testing::Test {
   static TilesConfig tiles_config() {
     TilesConfig c;
     c.twin_dir = city_->twin_dir;
+    c.window_m = 150.0;  // the checks below are for a 75 m half window
     return c;
   }
 

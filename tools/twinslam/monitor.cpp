@@ -15,6 +15,7 @@ const std::function<void(const T&)>* hook_for(const MonitorHooks& h) {
   if constexpr (std::is_same_v<T, msg::FeatureFrame>) return &h.features;
   if constexpr (std::is_same_v<T, msg::Odometry>) return &h.odometry;
   if constexpr (std::is_same_v<T, msg::Registration>) return &h.registration;
+  if constexpr (std::is_same_v<T, msg::LocalMap>) return &h.local_map;
   return nullptr;
 }
 }  // namespace

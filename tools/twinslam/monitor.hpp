@@ -30,6 +30,7 @@ struct MonitorHooks {
   std::function<void(const msg::FeatureFrame&)> features;
   std::function<void(const msg::Odometry&)> odometry;
   std::function<void(const msg::Registration&)> registration;
+  std::function<void(const msg::LocalMap&)> local_map;
 };
 
 class TopicMonitor {

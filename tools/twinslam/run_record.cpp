@@ -1,6 +1,7 @@
 #include "run_record.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -26,9 +27,27 @@ void RunRecord::odometry(const OdometryRecord& r, double wall_ms) {
   odometry_.emplace_back(r, it == frame_wall_ms_.end() ? -1.0 : wall_ms - it->second);
 }
 
-void RunRecord::registration(const RegistrationRecord& r) {
+void RunRecord::local_map(std::int64_t keyframe_stamp_ns, double wall_ms) {
   std::lock_guard lock(mutex_);
-  registrations_.push_back(r);
+  local_map_wall_ms_.emplace(keyframe_stamp_ns, wall_ms);  // the first sighting counts
+}
+
+void RunRecord::registration(RegistrationRecord r, double wall_ms) {
+  std::lock_guard lock(mutex_);
+  const auto it = local_map_wall_ms_.find(r.stamp_ns);
+  r.pipeline_latency_ms = it == local_map_wall_ms_.end() ? std::nan("") : wall_ms - it->second;
+  registrations_.push_back(std::move(r));
+}
+
+RunRecord::Latency RunRecord::pipeline_latency() const {
+  std::lock_guard lock(mutex_);
+  std::vector<double> v;
+  for (const auto& r : registrations_)
+    if (std::isfinite(r.pipeline_latency_ms)) v.push_back(r.pipeline_latency_ms);
+  if (v.empty()) return {};
+  std::sort(v.begin(), v.end());
+  const auto at = [&](double q) { return v[std::min(v.size() - 1, static_cast<std::size_t>(q * v.size()))]; };
+  return {v.size(), at(0.5), at(0.99)};
 }
 
 std::size_t RunRecord::odometry_count() const {
@@ -88,7 +107,7 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
     std::ofstream f(dir / "registrations.csv");
     if (!f) throw InputError((dir / "registrations.csv").string() + ": cannot write");
     f << "stamp_ns,accepted,rmse_m,inliers,fitness,time_ms,ev1,ev2,ev3,ev4,ev5,ev6,dx_m,dy_m,dz_m,droll_deg,"
-         "dpitch_deg,dyaw_deg,latency_ms,reason\n";
+         "dpitch_deg,dyaw_deg,latency_ms,pipeline_latency_ms,reason\n";
     for (const auto& r : registrations_) {
       f << r.stamp_ns << ',' << (r.accepted ? 1 : 0) << ',' << r.rmse_m << ',' << r.inliers << ',' << r.fitness << ','
         << r.time_ms;
@@ -98,7 +117,9 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
       std::string reason = r.reason;
       std::replace(reason.begin(), reason.end(), ',', ';');  // one CSV field
       std::replace(reason.begin(), reason.end(), '\n', ' ');
-      f << ',' << r.latency_ms << ',' << reason << '\n';
+      f << ',' << r.latency_ms << ',';
+      if (std::isfinite(r.pipeline_latency_ms)) f << r.pipeline_latency_ms;
+      f << ',' << reason << '\n';
     }
     written.push_back(dir / "registrations.csv");
   }

@@ -32,6 +32,10 @@ struct RegistrationRecord {
   Eigen::Vector3d dp_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d drpy_deg = Eigen::Vector3d::Zero();  // roll, pitch, yaw of the correction [deg]
   double latency_ms = 0;  // LocalMap arrival -> Registration publication on the registration host [ms]
+  // LocalMap arrival here -> Registration arrival here [ms] (this process runs beside the estimator, so this is the
+  // age of a result when the estimator can fuse it: transport both ways, queueing and compute); NaN if the LocalMap
+  // was not seen.
+  double pipeline_latency_ms = 0;
   std::string reason;     // "accepted", or why it was rejected (one line, no commas written)
 };
 
@@ -41,7 +45,14 @@ class RunRecord {
   void frame_in(std::int64_t stamp_ns, double wall_ms);                 // image or feature frame sent by ingest
   void features(std::int64_t stamp_ns, double tracking_ms);
   void odometry(const OdometryRecord& r, double wall_ms);
-  void registration(const RegistrationRecord& r);
+  void local_map(std::int64_t keyframe_stamp_ns, double wall_ms);      // a LocalMap seen on the wire
+  void registration(RegistrationRecord r, double wall_ms);             // fills r.pipeline_latency_ms
+  // Median and 99th percentile of pipeline_latency_ms over the registrations whose LocalMap was seen [ms].
+  struct Latency {
+    std::size_t count = 0;
+    double median_ms = 0, p99_ms = 0;
+  };
+  Latency pipeline_latency() const;
 
   std::size_t odometry_count() const;
   // Stamp of the first pose in W (ODOM_ALIGNED) and of the first estimated pose, if any.
@@ -52,7 +63,7 @@ class RunRecord {
 
  private:
   mutable std::mutex mutex_;
-  std::map<std::int64_t, double> frame_wall_ms_, tracking_ms_;
+  std::map<std::int64_t, double> frame_wall_ms_, tracking_ms_, local_map_wall_ms_;
   std::vector<std::pair<OdometryRecord, double>> odometry_;  // with end-to-end ms
   std::vector<RegistrationRecord> registrations_;
 };

@@ -26,6 +26,8 @@ struct RegistrationNodeOptions {
   double tile_size_m = 50.0;       // side of the twin store's tiles (`twinslam twin build --tile-size`) [m]
   double window_m = 150.0;         // square window of twin around each vehicle (the paper's 150 m) [m]
   std::size_t max_stored_tiles = 4096;  // compressed tiles kept (farthest evicted first)
+  double prefetch_m = 50.0;             // ring around the window indexed ahead (windowed_twin.hpp) [m]
+  std::size_t prefetch_per_update = 1;  // ring tiles built per registration at most
 };
 
 // Wire key "<twin id>/<ix>_<iy>" -> tile key; nullopt if malformed.

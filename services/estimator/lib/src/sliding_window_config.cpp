@@ -12,6 +12,7 @@ void SlidingWindowConfig::validate() const {
     if (!(v > 0) || !std::isfinite(v)) throw InputError(std::string("sliding_window.") + name + ": must be > 0");
   };
   if (window_keyframes < 2) throw InputError("sliding_window.window_keyframes: must be >= 2");
+  local_map.validate("sliding_window");
   if (max_solver_iterations < 1) throw InputError("sliding_window.max_solver_iterations: must be >= 1");
   if (min_observations < 2) throw InputError("sliding_window.min_observations: must be >= 2");
   if (max_landmarks < 1) throw InputError("sliding_window.max_landmarks: must be >= 1");

@@ -78,6 +78,10 @@ void bind_sliding_window_config(yaml::Fields& fields, SlidingWindowConfig& confi
   bind_triangulation(fields.section("triangulation"), config.triangulation);
   fields.section("marginalization").number("min_eigenvalue", config.marginalization.min_eigenvalue);
   bind_motion_init(fields.section("motion_init"), config.motion_init);
+  fields.section("local_map")
+      .number("horizon_s", config.local_map.horizon_s, "s")
+      .number("horizon_m", config.local_map.horizon_m, "m")
+      .integer("max_landmarks", config.local_map.max_landmarks);
 }
 
 void validate_estimator_config(const SlidingWindowConfig& config, const std::string& file) {

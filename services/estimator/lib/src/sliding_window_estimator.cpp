@@ -92,6 +92,7 @@ void reset(WindowState& s) {
   s.idle_status = EstimatorStatus::kReinitializing;
   s.first_frame_ns = -1;
   s.init_frames.clear();
+  s.horizon.clear();  // its landmarks are in the old L
   // L is defined anew by the next initialization, so the old T_WL means nothing for it: global inputs align again.
   s.T_WL.fill(0.0);
   s.world_prior.reset();
@@ -209,6 +210,7 @@ std::optional<MotionInitResult> try_init_in_motion(WindowState& s, std::int64_t 
 SlidingWindowEstimator::SlidingWindowEstimator(const SlidingWindowConfig& config) : s_(std::make_unique<WindowState>()) {
   config.validate();
   s_->config = config;
+  s_->horizon = LandmarkHorizon(config.local_map);
 }
 
 SlidingWindowEstimator::~SlidingWindowEstimator() = default;
@@ -322,7 +324,9 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
   const WindowFrame& newest = *s.frames.back();
   FrameEstimate e = make_estimate(s, newest, EstimatorStatus::kTracking);
   if (newest.keyframe) {
-    s.local_map = LocalMapEstimate{newest.stamp_ns, newest.T_LB(), e.T_WL, window_landmarks(s)};
+    const Eigen::Isometry3d T_LB = newest.T_LB();
+    s.local_map = LocalMapEstimate{newest.stamp_ns, T_LB, e.T_WL,
+                                   s.horizon.update(newest.stamp_ns, T_LB.translation(), window_landmarks(s))};
     if (static_cast<int>(s.frames.size()) > s.config.window_keyframes) marginalize_oldest(s);
   }
   return finish(e);

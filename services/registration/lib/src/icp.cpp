@@ -76,9 +76,24 @@ Vector6d gauss_newton_step(const std::vector<Correspondence>& corr, double kerne
   return s.asDiagonal() * xs;
 }
 
-void finish(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
-            const Pose& pose, double gate, IcpResult& out) {
-  const std::vector<Correspondence> corr = associate(index, p_W, out.pivot_W, pose, gate);
+// The correspondences of the last iteration carried through its update x (rotation, translation): a' = Exp(w) a + v,
+// the same twin points. Used once ICP has converged: the update is below 0.1 mm, so a fresh nearest-neighbour search
+// would find the same points, and skipping it saves one association of the ~6 per registration.
+std::vector<Correspondence> carry(std::vector<Correspondence> corr, const Vector6d& x, double gate) {
+  const Eigen::Matrix3d dR = geometry::so3_exp(x.head<3>());
+  std::vector<Correspondence> out;
+  out.reserve(corr.size());
+  for (Correspondence& k : corr) {
+    k.a = dR * k.a + x.tail<3>();
+    k.distance = (k.a - k.b).norm();
+    k.residual = k.n.dot(k.a - k.b);
+    if (k.distance <= gate) out.push_back(k);
+  }
+  return out;
+}
+
+void finish(const RegistrationConfig& config, const std::vector<Correspondence>& corr, const Pose& pose, double gate,
+            IcpResult& out) {
   out.correspondences = corr.size();
   out.threshold_m = gate;
   out.sigma_m = std::max(robust_sigma(corr, true), 1e-9);
@@ -111,13 +126,15 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
   Pose pose;
   double gate = config.initial_threshold_m;
   const double conv_rot = config.convergence_rotation_deg * M_PI / 180.0;
+  std::vector<Correspondence> corr;
+  Vector6d x = Vector6d::Zero();
   for (int it = 1; it <= config.max_iterations; ++it) {
-    const std::vector<Correspondence> corr = associate(index, p_W, pivot_W, pose, gate);
+    corr = associate(index, p_W, pivot_W, pose, gate);
     if (corr.size() < 6) break;  // nothing to solve for: not converged
     // KISS-ICP's adaptive threshold: the gate follows 3 sigma of the distances (never growing, never below the
     // floor), and the kernel scale is that sigma, so far correspondences lose weight smoothly as alignment improves.
     const double sigma = std::max(robust_sigma(corr, false), config.min_threshold_m / config.threshold_sigmas);
-    const Vector6d x = gauss_newton_step(corr, sigma);
+    x = gauss_newton_step(corr, sigma);
     const Eigen::Matrix3d dR = geometry::so3_exp(x.head<3>());
     pose.R = geometry::so3_normalize(dR * pose.R);
     pose.t = dR * pose.t + x.tail<3>();
@@ -128,7 +145,8 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
       break;
     }
   }
-  finish(config, index, p_W, pose, gate, out);
+  finish(config, out.converged ? carry(std::move(corr), x, gate) : associate(index, p_W, pivot_W, pose, gate), pose,
+         gate, out);
   return out;
 }
 

@@ -1,4 +1,4 @@
-// Source-cloud preprocessing (see preprocess.hpp). Includes PCL for StatisticalOutlierRemoval only.
+// Source-cloud preprocessing (see preprocess.hpp).
 #include "twinslam/registration/preprocess.hpp"
 
 #include <algorithm>
@@ -7,10 +7,7 @@
 #include <string>
 #include <tuple>
 
-#include <pcl/filters/statistical_outlier_removal.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-
+#include "kdtree.hpp"
 #include "twinslam/core/error.hpp"
 
 namespace twinslam::registration {
@@ -53,24 +50,49 @@ std::vector<Eigen::Vector3d> voxel_downsample(const std::vector<Eigen::Vector3d>
 std::vector<Eigen::Vector3d> remove_outliers(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& pivot,
                                              int neighbors, double stddev) {
   if (neighbors <= 0 || p.size() <= static_cast<std::size_t>(neighbors)) return p;
-  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  for (const Eigen::Vector3d& x : p) {
-    const Eigen::Vector3f q = (x - pivot).cast<float>();  // float relative to the keyframe: no precision loss
-    cloud->push_back(pcl::PointXYZ(q.x(), q.y(), q.z()));
-  }
-  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
-  sor.setInputCloud(cloud);
-  sor.setMeanK(neighbors);
-  sor.setStddevMulThresh(stddev);
-  pcl::Indices kept;
-  sor.filter(kept);  // indices in input order
   std::vector<Eigen::Vector3d> out;
-  out.reserve(kept.size());
-  for (const auto i : kept) out.push_back(p[static_cast<std::size_t>(i)]);
+  for (const std::size_t i : statistical_inliers(p, pivot, neighbors, stddev)) out.push_back(p[i]);
   return out;
 }
 
 }  // namespace
+
+std::vector<std::size_t> statistical_inliers(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& origin,
+                                             int neighbors, double stddev_mul) {
+  std::vector<std::size_t> kept;
+  const auto k = static_cast<std::size_t>(std::clamp(neighbors, 1, 32));
+  if (p.size() <= k) {
+    for (std::size_t i = 0; i < p.size(); ++i) kept.push_back(i);
+    return kept;
+  }
+  std::vector<float> xyz;
+  xyz.reserve(3 * p.size());
+  for (const Eigen::Vector3d& x : p) {
+    const Eigen::Vector3f q = (x - origin).cast<float>();  // float relative to the keyframe: no precision loss
+    xyz.insert(xyz.end(), {q.x(), q.y(), q.z()});
+  }
+  const KdTree3f tree(std::move(xyz));
+  // First pass: mean distance to the k nearest others (the query itself is the first of k + 1 found).
+  std::vector<float> mean_distance(p.size());
+  float d_sq[KdTree3f::kMaxK];
+  double sum = 0.0, sq_sum = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t found = tree.knn(tree.point(i), k + 1, d_sq);
+    double s = 0.0;
+    for (std::size_t j = 1; j < found; ++j) s += std::sqrt(d_sq[j]);
+    mean_distance[i] = static_cast<float>(s / static_cast<double>(k));
+    sum += mean_distance[i];
+    sq_sum += static_cast<double>(mean_distance[i]) * mean_distance[i];
+  }
+  // Second pass: keep the points within mean + stddev_mul * stddev (sample variance, as PCL).
+  const double n = static_cast<double>(p.size());
+  const double mean = sum / n;
+  const double stddev = std::sqrt(std::max(0.0, (sq_sum - sum * sum / n) / (n - 1.0)));
+  const double threshold = mean + stddev_mul * stddev;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!(mean_distance[i] > threshold)) kept.push_back(i);
+  return kept;
+}
 
 SourceCloud preprocess(const RegistrationConfig& config, const SourceInput& input) {
   check_input(input);

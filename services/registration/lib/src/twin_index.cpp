@@ -1,14 +1,11 @@
-// Per-tile KD-trees (PCL KdTreeFLANN). The only file of the index that includes PCL (~24 s per translation unit).
+// Per-tile KD-trees (KdTree3f: FLANN's KD-tree, see kdtree.hpp).
 #include "twinslam/registration/twin_index.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-
+#include "kdtree.hpp"
 #include "twinslam/core/error.hpp"
 
 namespace twinslam::registration {
@@ -18,9 +15,15 @@ namespace twinslam::registration {
 struct TwinTileIndex::Tile {
   Eigen::Vector3d origin_W = Eigen::Vector3d::Zero();
   Eigen::AlignedBox3d bounds_W;  // of the tile's points (empty box for an empty tile)
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud;
+  KdTree3f tree{{}};             // points relative to origin_W
   std::vector<Eigen::Vector3f> normals;
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  std::size_t size() const { return normals.size(); }
+};
+
+struct TwinTileIndex::Best {
+  double distance_sq = std::numeric_limits<double>::infinity();
+  twin::TileKey key{};
+  std::optional<TwinMatch> match;
 };
 
 namespace {
@@ -62,16 +65,22 @@ void TwinTileIndex::add_tile(const twin::TileKey& key, const std::vector<Eigen::
   check_tile(key, points_W, normals_W);
   auto tile = std::make_unique<Tile>();
   tile->origin_W = twin::tile_origin_W(key, tile_size_m_);
-  tile->cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  tile->cloud->reserve(points_W.size());
+  std::vector<float> xyz;
+  xyz.reserve(3 * points_W.size());
   tile->normals.reserve(points_W.size());
   for (std::size_t i = 0; i < points_W.size(); ++i) {
     const Eigen::Vector3f p = (points_W[i] - tile->origin_W).cast<float>();
-    tile->cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+    xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
     tile->normals.push_back(normals_W[i].normalized().cast<float>());
     tile->bounds_W.extend(points_W[i]);
   }
-  if (!tile->cloud->empty()) tile->tree.setInputCloud(tile->cloud);
+  tile->tree = KdTree3f(std::move(xyz));
+  if (!points_W.empty()) {
+    // How far the points reach outside the tile's square (never shrinks: removing a tile keeps a safe bound).
+    const Eigen::Vector2d lo = tile->origin_W.head<2>(), hi = lo + Eigen::Vector2d::Constant(tile_size_m_);
+    const Eigen::Vector2d out = (lo - tile->bounds_W.min().head<2>()).cwiseMax(tile->bounds_W.max().head<2>() - hi);
+    spill_m_ = std::max(spill_m_, out.maxCoeff());
+  }
   tiles_[key] = std::move(tile);
 }
 
@@ -88,54 +97,61 @@ std::size_t TwinTileIndex::tile_count() const { return tiles_.size(); }
 
 std::size_t TwinTileIndex::point_count() const {
   std::size_t n = 0;
-  for (const auto& [key, tile] : tiles_) n += tile->cloud->size();
+  for (const auto& [key, tile] : tiles_) n += tile->size();
   return n;
 }
 
 std::size_t TwinTileIndex::memory_bytes() const {
-  // Point (16 B as PointXYZ), normal (12 B), FLANN's index (~ one int per point plus nodes of ~15 points).
+  // Point (12 B) and the tree's reordered copy (12 B), normal (12 B), the tree's index (8 B per point) and nodes
+  // (~ one of ~40 B per 5 points).
   std::size_t bytes = 0;
-  for (const auto& [key, tile] : tiles_) bytes += sizeof(Tile) + tile->cloud->size() * (16 + 12 + 4 + 8);
+  for (const auto& [key, tile] : tiles_) bytes += sizeof(Tile) + tile->size() * (12 + 12 + 12 + 8 + 8);
   return bytes;
 }
 
 std::optional<TwinMatch> TwinTileIndex::nearest(const Eigen::Vector3d& p_W, double max_dist_m) const {
   if (!p_W.allFinite() || !(max_dist_m > 0.0)) return std::nullopt;
-  // Candidate tiles by grid cell: a tile's points may spill a little outside its square (triangles cut at the
-  // border), so the grid range is widened by one tile and the exact test is the points' bounding box.
-  const int ix0 = static_cast<int>(std::floor((p_W.x() - max_dist_m) / tile_size_m_)) - 1;
-  const int ix1 = static_cast<int>(std::floor((p_W.x() + max_dist_m) / tile_size_m_)) + 1;
-  const int iy0 = static_cast<int>(std::floor((p_W.y() - max_dist_m) / tile_size_m_)) - 1;
-  const int iy1 = static_cast<int>(std::floor((p_W.y() + max_dist_m) / tile_size_m_)) + 1;
   const double max_sq = max_dist_m * max_dist_m;
-  double best_sq = std::numeric_limits<double>::infinity();
-  std::optional<TwinMatch> best;
+  Best best;
+  // The tile holding the query first: its nearest point usually bounds the search so tightly that no other tile
+  // is in reach. Ties go to the lower tile key whatever the order of the search.
+  const twin::TileKey home{static_cast<int>(std::floor(p_W.x() / tile_size_m_)),
+                           static_cast<int>(std::floor(p_W.y() / tile_size_m_))};
+  if (const auto it = tiles_.find(home); it != tiles_.end()) search_tile(home, *it->second, p_W, max_sq, best);
+  // Other candidate tiles by grid cell: a tile's points may spill outside its square (by spill_m_ at most), the
+  // exact test is each tile's bounding box.
+  const double reach = std::min(max_dist_m, std::sqrt(best.distance_sq)) + spill_m_;
+  const int ix0 = static_cast<int>(std::floor((p_W.x() - reach) / tile_size_m_));
+  const int ix1 = static_cast<int>(std::floor((p_W.x() + reach) / tile_size_m_));
+  const int iy0 = static_cast<int>(std::floor((p_W.y() - reach) / tile_size_m_));
+  const int iy1 = static_cast<int>(std::floor((p_W.y() + reach) / tile_size_m_));
+  if (ix0 == ix1 && iy0 == iy1) return best.match;  // only the home tile is in reach
   for (int ix = ix0; ix <= ix1; ++ix) {
     for (auto it = tiles_.lower_bound({ix, iy0}); it != tiles_.end() && it->first <= twin::TileKey{ix, iy1}; ++it) {
-      search_tile(*it->second, p_W, max_sq, best_sq, best);
+      if (it->first != home) search_tile(it->first, *it->second, p_W, max_sq, best);
     }
   }
-  return best;
+  return best.match;
 }
 
-void TwinTileIndex::search_tile(const Tile& t, const Eigen::Vector3d& p_W, double max_sq, double& best_sq,
-                                std::optional<TwinMatch>& best) {
-  if (t.cloud->empty()) return;
-  if (box_distance_sq(t.bounds_W, p_W) > std::min(max_sq, best_sq)) return;
+void TwinTileIndex::search_tile(const twin::TileKey& key, const Tile& t, const Eigen::Vector3d& p_W, double max_sq,
+                                Best& best) {
+  if (t.tree.empty()) return;
+  const double bound_sq = std::min(max_sq, best.distance_sq);
+  if (box_distance_sq(t.bounds_W, p_W) > bound_sq) return;
   const Eigen::Vector3f q = (p_W - t.origin_W).cast<float>();
-  thread_local pcl::Indices idx(1);
-  thread_local std::vector<float> dist(1);
-  // radiusSearch with max_nn = 1 keeps the closest point within the radius (FLANN KNNRadiusResultSet), pruning by the
-  // gate from the start; float radius slack of 1e-4 m, the exact test is in double below.
-  if (t.tree.radiusSearch(pcl::PointXYZ(q.x(), q.y(), q.z()), std::sqrt(max_sq) + 1e-4, idx, dist, 1) < 1) return;
-  const auto i = static_cast<std::size_t>(idx[0]);
-  const auto& c = (*t.cloud)[i];
-  const Eigen::Vector3d b_W = t.origin_W + Eigen::Vector3d(c.x, c.y, c.z);
+  // Float radius slack of 1e-4 m (squared below, relative 1e-6 for roundoff); the exact test is in double below.
+  const double r = std::sqrt(bound_sq) + 1e-4;
+  float found_sq = 0.0f;
+  const std::size_t i = t.tree.nearest_within(q.data(), static_cast<float>(r * r * (1.0 + 1e-6)), found_sq);
+  if (i == KdTree3f::kNone) return;
+  const float* c = t.tree.point(i);
+  const Eigen::Vector3d b_W = t.origin_W + Eigen::Vector3d(c[0], c[1], c[2]);
   const double d_sq = (b_W - p_W).squaredNorm();
-  if (d_sq <= max_sq && d_sq < best_sq) {  // strict: on a tie the lower tile key (visited first) wins
-    best_sq = d_sq;
-    best = TwinMatch{b_W, t.normals[i].cast<double>(), std::sqrt(d_sq)};
-  }
+  if (d_sq > max_sq || d_sq > best.distance_sq || (d_sq == best.distance_sq && !(key < best.key))) return;
+  best.distance_sq = d_sq;
+  best.key = key;
+  best.match = TwinMatch{b_W, t.normals[i].cast<double>(), std::sqrt(d_sq)};
 }
 
 std::vector<std::optional<TwinMatch>> TwinTileIndex::nearest_batch(const std::vector<Eigen::Vector3d>& p_W,

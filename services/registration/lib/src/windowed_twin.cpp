@@ -25,14 +25,21 @@ double square_distance(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& p)
 
 }  // namespace
 
-WindowedTwin::WindowedTwin(double tile_size_m, double window_m, std::size_t max_tiles)
-    : window_m_(window_m), max_tiles_(max_tiles), index_(tile_size_m) {
+WindowedTwin::WindowedTwin(double tile_size_m, double window_m, std::size_t max_tiles, double prefetch_m,
+                           std::size_t prefetch_per_update)
+    : window_m_(window_m),
+      prefetch_m_(prefetch_m),
+      prefetch_per_update_(prefetch_per_update),
+      max_tiles_(max_tiles),
+      index_(tile_size_m) {
   if (!(window_m > 0.0) || max_tiles == 0) throw InputError("windowed twin: window_m and max_tiles must be > 0");
+  if (!(prefetch_m >= 0.0)) throw InputError("windowed twin: prefetch_m must be >= 0");
 }
 
-bool WindowedTwin::in_some_window(const Eigen::AlignedBox3d& bounds_W) const {
-  return std::any_of(vehicles_.begin(), vehicles_.end(),
-                     [&](const auto& v) { return square_distance(bounds_W, v.second) <= 0.5 * window_m_; });
+double WindowedTwin::window_distance(const Eigen::AlignedBox3d& bounds_W) const {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& [id, p] : vehicles_) d = std::min(d, square_distance(bounds_W, p));
+  return d;
 }
 
 void WindowedTwin::add_tile(const twin::TileKey& key, const Eigen::AlignedBox3d& bounds_W,
@@ -62,23 +69,36 @@ WindowedTwinStats WindowedTwin::update(const std::string& vehicle, const Eigen::
   vehicles_[vehicle] = p_W;
   WindowedTwinStats stats;
   std::string failed;
-  for (auto it = tiles_.begin(); it != tiles_.end();) {
-    const bool want = in_some_window(it->second.bounds_W);
-    const bool have = index_.contains(it->first);
-    if (want && !have) {
-      try {
-        add_tile_from_draco(index_, it->first, it->second.points_draco);
-        ++stats.added;
-      } catch (const InputError& e) {
-        failed = e.what();
-        it = tiles_.erase(it);
-        continue;
-      }
-    } else if (!want && have) {
-      index_.remove_tile(it->first);
+  const auto build = [&](const twin::TileKey& key) {
+    try {
+      add_tile_from_draco(index_, key, tiles_.at(key).points_draco);
+      ++stats.added;
+      return true;
+    } catch (const InputError& e) {
+      failed = e.what();
+      tiles_.erase(key);
+      return false;
+    }
+  };
+  const double half = 0.5 * window_m_;
+  std::vector<std::pair<double, twin::TileKey>> ring;  // (distance, key) of ring tiles not indexed yet
+  std::vector<twin::TileKey> needed;
+  for (const auto& [key, tile] : tiles_) {
+    const double d = window_distance(tile.bounds_W);
+    const bool have = index_.contains(key);
+    if (d <= half && !have) {
+      needed.push_back(key);
+    } else if (d <= half + prefetch_m_ && !have) {
+      ring.emplace_back(d, key);
+    } else if (d > half + prefetch_m_ && have) {
+      index_.remove_tile(key);
       ++stats.removed;
     }
-    ++it;
+  }
+  for (const auto& key : needed) build(key);
+  std::sort(ring.begin(), ring.end());  // nearest first, then by key: deterministic
+  for (std::size_t i = 0; i < ring.size() && stats.prefetched < prefetch_per_update_; ++i) {
+    if (build(ring[i].second)) ++stats.prefetched;
   }
   stats.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!failed.empty()) throw InputError(failed);

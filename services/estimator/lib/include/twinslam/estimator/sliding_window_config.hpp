@@ -4,6 +4,7 @@
 
 #include "twinslam/estimator/imu_types.hpp"
 #include "twinslam/estimator/keyframe_policy.hpp"
+#include "twinslam/estimator/landmark_horizon.hpp"
 #include "twinslam/estimator/marginalization.hpp"
 #include "twinslam/estimator/motion_init.hpp"
 #include "twinslam/estimator/reprojection_factor.hpp"
@@ -74,6 +75,7 @@ struct SlidingWindowConfig {
   KeyframePolicyConfig keyframe;       // focal_px is overwritten with focal_px above
   TriangulationConfig triangulation;   // focal_px likewise
   MarginalizationConfig marginalization;
+  LandmarkHorizonConfig local_map;     // which landmarks a LocalMap carries (registration's source cloud)
 
   void validate() const;  // throws twinslam::InputError naming the bad field
   ReprojectionNoise reprojection_noise() const;

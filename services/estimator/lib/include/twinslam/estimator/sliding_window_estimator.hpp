@@ -49,11 +49,6 @@ struct FrameEstimate {
   double estimator_ms = 0.0;                      // wall time spent in add_frame [ms]
 };
 
-struct LandmarkEstimate {
-  std::int64_t id = -1;
-  Eigen::Vector3d p_L = Eigen::Vector3d::Zero();  // [m]
-  double quality = 0.0;                           // [0, 1]: observations, parallax, reprojection error
-};
 
 struct LocalMapEstimate {
   std::int64_t keyframe_stamp_ns = 0;

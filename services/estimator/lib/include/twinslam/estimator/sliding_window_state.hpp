@@ -55,6 +55,7 @@ struct WindowState {
   std::int64_t last_frame_ns = -1;
   std::int64_t next_frame_id = 0;
   std::optional<LocalMapEstimate> local_map;
+  LandmarkHorizon horizon;                    // landmarks of recent keyframes for the LocalMap
   std::vector<std::shared_ptr<WindowFactorProvider>> providers;
 
   // World alignment (world_alignment.hpp): the block, its prior from set_world_alignment(), and whether any term has

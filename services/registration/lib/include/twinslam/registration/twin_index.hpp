@@ -53,9 +53,11 @@ class TwinTileIndex {
   struct Tile;  // defined in twin_index.cpp (PCL stays out of this header)
 
  private:
-  static void search_tile(const Tile& t, const Eigen::Vector3d& p_W, double max_sq, double& best_sq,
-                          std::optional<TwinMatch>& best);
+  struct Best;  // the nearest point so far and its tile's key
+  static void search_tile(const twin::TileKey& key, const Tile& t, const Eigen::Vector3d& p_W, double max_sq,
+                          Best& best);
   double tile_size_m_;
+  double spill_m_ = 0.0;  // farthest any tile's points reach outside its square [m]
   std::map<twin::TileKey, std::unique_ptr<Tile>> tiles_;
 };
 

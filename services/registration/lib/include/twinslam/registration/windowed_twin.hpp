@@ -4,6 +4,10 @@
 // tile decoded and its KD-tree built once when it enters a window, dropped when no vehicle is near it any more (the
 // paper code rebuilt a KD-tree over a 700 x 700 m crop on every call). Memory is bounded by the compressed tiles
 // (evicted farthest-first past max_tiles) plus the tiles of the windows, whatever the size of the city.
+// Prefetch: tiles within a ring of `prefetch_m` around a window are indexed too, at most `prefetch_per_update` per
+// update (nearest first), so that crossing a tile border costs no more than that many tile builds (the tiles entering
+// the window were built on earlier keyframes) instead of a whole row at once: that row was the p99 of a keyframe's
+// registration time in bench_registration. A tile inside a window that is not indexed yet is always built at once.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -16,14 +20,18 @@
 namespace twinslam::registration {
 
 struct WindowedTwinStats {
-  std::size_t added = 0, removed = 0;  // tiles that entered / left the index in this update
+  std::size_t added = 0, removed = 0;  // tiles that entered / left the index in this update (prefetched included)
+  std::size_t prefetched = 0;          // of `added`: tiles of the prefetch ring
   double update_ms = 0.0;              // decoding and KD-tree building included [ms]
 };
 
 class WindowedTwin {
  public:
   // window_m: side of the square window around each vehicle (the paper's 150 m); tile_size_m: the store's tiles.
-  WindowedTwin(double tile_size_m, double window_m, std::size_t max_tiles = 4096);
+  // prefetch_m: width of the ring around the window whose tiles are indexed ahead [m] (0: none);
+  // prefetch_per_update: ring tiles built per update at most.
+  WindowedTwin(double tile_size_m, double window_m, std::size_t max_tiles = 4096, double prefetch_m = 50.0,
+               std::size_t prefetch_per_update = 2);
 
   // A tile from the wire (replaces one of the same key; re-indexed if it was indexed). bounds_W: of its content.
   void add_tile(const twin::TileKey& key, const Eigen::AlignedBox3d& bounds_W, std::vector<std::uint8_t> points_draco);
@@ -42,10 +50,12 @@ class WindowedTwin {
     Eigen::AlignedBox3d bounds_W;
     std::vector<std::uint8_t> points_draco;
   };
-  bool in_some_window(const Eigen::AlignedBox3d& bounds_W) const;
+  double window_distance(const Eigen::AlignedBox3d& bounds_W) const;  // nearest vehicle, square metric [m]
   void evict();
 
   double window_m_;
+  double prefetch_m_;
+  std::size_t prefetch_per_update_;
   std::size_t max_tiles_;
   TwinTileIndex index_;
   std::map<twin::TileKey, Stored> tiles_;

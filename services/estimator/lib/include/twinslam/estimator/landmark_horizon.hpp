@@ -1,0 +1,53 @@
+#pragma once
+// The landmarks a keyframe's LocalMap carries (issue 12: registration's source cloud). The window alone holds at most
+// max_landmarks (150) points, often on one facade; registration wants more geometry. So every landmark the window
+// reported is remembered with its last estimate in L after it leaves the window (marginalized or its track ended),
+// and a LocalMap carries the window's landmarks plus those seen within `horizon_s` whose position lies within
+// `horizon_m` of the keyframe. L drifts slowly, so a recently marginalized landmark's last estimate is still a good
+// point of the same local map; the horizon bounds how much drift the cloud mixes in.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace twinslam::estimator {
+
+// A landmark as the LocalMap carries it.
+struct LandmarkEstimate {
+  std::int64_t id = -1;
+  Eigen::Vector3d p_L = Eigen::Vector3d::Zero();  // [m]
+  double quality = 0.0;                           // [0, 1]: observations, parallax, reprojection error
+};
+
+struct LandmarkHorizonConfig {
+  double horizon_s = 10.0;   // landmarks last in the window at most this long ago are kept; 0: window only [s]
+  double horizon_m = 60.0;   // ... and only those within this distance of the keyframe [m]
+  int max_landmarks = 1500;  // at most this many per LocalMap (the most recently seen first)
+  bool operator==(const LandmarkHorizonConfig&) const = default;
+  void validate(const std::string& source = "local_map") const;  // InputError naming the key
+};
+
+class LandmarkHorizon {
+ public:
+  explicit LandmarkHorizon(const LandmarkHorizonConfig& config = {});
+
+  // The window's landmarks at keyframe `stamp_ns` (body at p_LB): remembers them and returns the LocalMap's cloud,
+  // window landmarks (current estimates) and remembered ones within the horizon, sorted by id. Stamps must not go
+  // back (a reset of the estimator calls clear()).
+  std::vector<LandmarkEstimate> update(std::int64_t stamp_ns, const Eigen::Vector3d& p_LB,
+                                       const std::vector<LandmarkEstimate>& window);
+  void clear() { seen_.clear(); }
+  std::size_t remembered() const { return seen_.size(); }
+
+ private:
+  struct Seen {
+    LandmarkEstimate estimate;
+    std::int64_t last_stamp_ns = 0;
+  };
+  LandmarkHorizonConfig config_;
+  std::map<std::int64_t, Seen> seen_;  // by landmark id
+};
+
+}  // namespace twinslam::estimator

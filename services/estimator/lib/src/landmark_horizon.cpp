@@ -1,0 +1,49 @@
+// LandmarkHorizon (see landmark_horizon.hpp).
+#include "twinslam/estimator/landmark_horizon.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "twinslam/core/error.hpp"
+
+namespace twinslam::estimator {
+
+void LandmarkHorizonConfig::validate(const std::string& source) const {
+  const auto fail = [&](const char* key, const std::string& what) {
+    throw InputError(source + ": local_map key '" + key + "': " + what);
+  };
+  if (!std::isfinite(horizon_s) || horizon_s < 0.0) fail("horizon_s", "must be >= 0 s");
+  if (!std::isfinite(horizon_m) || horizon_m <= 0.0) fail("horizon_m", "must be > 0 m");
+  if (max_landmarks < 1) fail("max_landmarks", "must be >= 1");
+}
+
+LandmarkHorizon::LandmarkHorizon(const LandmarkHorizonConfig& config) : config_(config) { config_.validate(); }
+
+std::vector<LandmarkEstimate> LandmarkHorizon::update(std::int64_t stamp_ns, const Eigen::Vector3d& p_LB,
+                                                      const std::vector<LandmarkEstimate>& window) {
+  for (const LandmarkEstimate& l : window) seen_[l.id] = {l, stamp_ns};
+  const auto horizon_ns = static_cast<std::int64_t>(std::llround(config_.horizon_s * 1e9));
+  std::vector<const Seen*> kept;
+  for (auto it = seen_.begin(); it != seen_.end();) {
+    const Seen& s = it->second;
+    if (stamp_ns - s.last_stamp_ns > horizon_ns) {
+      it = seen_.erase(it);  // too old for any later keyframe as well
+      continue;
+    }
+    if (s.last_stamp_ns == stamp_ns || (s.estimate.p_L - p_LB).norm() <= config_.horizon_m) kept.push_back(&s);
+    ++it;
+  }
+  if (kept.size() > static_cast<std::size_t>(config_.max_landmarks)) {
+    // The most recently seen first (the window's own are the most recent); ties by id: deterministic.
+    std::stable_sort(kept.begin(), kept.end(),
+                     [](const Seen* a, const Seen* b) { return a->last_stamp_ns > b->last_stamp_ns; });
+    kept.resize(static_cast<std::size_t>(config_.max_landmarks));
+    std::sort(kept.begin(), kept.end(), [](const Seen* a, const Seen* b) { return a->estimate.id < b->estimate.id; });
+  }
+  std::vector<LandmarkEstimate> out;
+  out.reserve(kept.size());
+  for (const Seen* s : kept) out.push_back(s->estimate);
+  return out;
+}
+
+}  // namespace twinslam::estimator
