@@ -34,8 +34,8 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   r.stamp_ns = 1'100'000'000LL;
   r.accepted = true;
   r.info_eigenvalues << 1, 2, 3, 4, 5, 6;
-  rec.local_map(r.stamp_ns, 500.0);
-  rec.local_map(r.stamp_ns, 900.0);  // a re-delivery: the first sighting counts
+  rec.local_map(r.stamp_ns, 500.0, 40);
+  rec.local_map(r.stamp_ns, 900.0, 40);  // a re-delivery: the first sighting counts
   rec.registration(r, 512.5);
   cli::RegistrationRecord rejected;
   rejected.stamp_ns = 1'200'000'000LL;
@@ -85,6 +85,7 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   const auto latency = rec.pipeline_latency();
   EXPECT_EQ(latency.count, 1u);
   EXPECT_DOUBLE_EQ(latency.median_ms, 12.5);
+  EXPECT_EQ(rec.local_map_landmarks(), (std::pair<std::size_t, std::size_t>{40, 40}));
   fs::remove_all(dir);
 }
 

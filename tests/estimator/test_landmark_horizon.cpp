@@ -30,6 +30,23 @@ TEST(LandmarkHorizon, KeepsLandmarksThatLeftTheWindowWithinTheTimeHorizonWithThe
   EXPECT_EQ(h.remembered(), 2u);
 }
 
+TEST(LandmarkHorizon, KeepsTheEstimateFromWhenALandmarkWasBestObserved) {
+  LandmarkHorizon h({.horizon_s = 10.0, .horizon_m = 100.0, .max_landmarks = 100});
+  h.update(0, Eigen::Vector3d::Zero(), {{1, Eigen::Vector3d(1, 0, 0), 0.4}});
+  h.update(kSecond, Eigen::Vector3d::Zero(), {{1, Eigen::Vector3d(2, 0, 0), 0.9}});
+  // While in the window: its current estimate, however poor.
+  const auto in_window = h.update(2 * kSecond, Eigen::Vector3d::Zero(), {{1, Eigen::Vector3d(3, 0, 0), 0.25}});
+  ASSERT_EQ(in_window.size(), 1u);
+  EXPECT_DOUBLE_EQ(in_window[0].p_L.x(), 3.0);
+  const auto out = h.update(3 * kSecond, Eigen::Vector3d::Zero(), {});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_DOUBLE_EQ(out[0].p_L.x(), 2.0);
+  EXPECT_DOUBLE_EQ(out[0].quality, 0.9);
+  // The time horizon counts from the last keyframe that had it in the window (2 s), not from its best.
+  EXPECT_EQ(h.update(11 * kSecond, Eigen::Vector3d::Zero(), {}).size(), 1u);
+  EXPECT_EQ(h.update(12500 * kSecond / 1000, Eigen::Vector3d::Zero(), {}).size(), 0u);
+}
+
 TEST(LandmarkHorizon, DropsRememberedLandmarksFarFromTheKeyframeButNeverTheWindowsOwn) {
   LandmarkHorizon h({.horizon_s = 10.0, .horizon_m = 5.0, .max_landmarks = 100});
   h.update(0, Eigen::Vector3d::Zero(), {at(1, 1.0), at(2, 20.0)});

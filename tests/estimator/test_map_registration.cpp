@@ -8,6 +8,7 @@
 #include <ceres/ceres.h>
 
 #include "sliding_window_sim.hpp"
+#include "twinslam/estimator/map_registration_factor.hpp"
 #include "twinslam/estimator/map_registration_provider.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
 #include "twinslam/core/error.hpp"
@@ -85,6 +86,33 @@ TEST(MapRegistrationFactor, RankDeficientInformationGivesNoInformationAlongTheFr
   x[1] = 0.1;  // 10 cm across: seen
   ASSERT_TRUE(f->Evaluate(params, r, nullptr));
   EXPECT_NEAR(norm6(r), 1.0, 1e-9);
+}
+
+// LocalMap.T_WB_covariance: the same uncertainty, sampled, in the Registration's order and perturbation.
+TEST(MapRegistrationFactor, CovarianceInRegistrationOrderIsTheSameUncertaintyOfTheSamePose) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  Eigen::Matrix<double, 6, 6> A;
+  for (int i = 0; i < 36; ++i) A(i / 6, i % 6) = 0.1 * n01(rng);
+  const Eigen::Matrix<double, 6, 6> cov = A * A.transpose() + 1e-3 * Eigen::Matrix<double, 6, 6>::Identity();
+  const Eigen::Matrix3d R_WB = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix<double, 6, 6> out = to_registration_order(cov, R_WB);
+  // Perturbations x = (dp_W, dtheta_B) ~ N(0, cov) act on the pose as p + dp_W, R_WB Exp(dtheta_B) =
+  // Exp(R_WB dtheta_B) R_WB: in registration order y = (R_WB dtheta_B, dp_W). Sample covariance of y ~ out.
+  const Eigen::LLT<Eigen::Matrix<double, 6, 6>> L(cov);
+  Eigen::Matrix<double, 6, 6> sum = Eigen::Matrix<double, 6, 6>::Zero();
+  const int samples = 20000;
+  for (int k = 0; k < samples; ++k) {
+    Eigen::Matrix<double, 6, 1> z;
+    for (int i = 0; i < 6; ++i) z(i) = n01(rng);
+    const Eigen::Matrix<double, 6, 1> x = L.matrixL() * z;
+    Eigen::Matrix<double, 6, 1> y;
+    y << R_WB * x.tail<3>(), x.head<3>();
+    sum += y * y.transpose();
+  }
+  EXPECT_LT((sum / samples - out).norm(), 0.05 * out.norm());
+  EXPECT_LT((out - out.transpose()).norm(), 1e-15);
+  EXPECT_NEAR(out.trace(), cov.trace(), 1e-12);  // a rotation of the rotation block keeps the trace
 }
 
 TEST(MapRegistrationProvider, LateResultsAreReattachedAndPullTheWorldPoseOntoTheTwin) {

@@ -172,13 +172,36 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
   away.translation() << 5000, 0, 0;
   far.T_WL(dds::to_msg(away));
   maps_out.publish(far);
+  // The same cloud with the estimator's covariance (rotation first): 0.2 deg / 5 cm cannot explain a 1 m / 3 deg
+  // correction; 5 deg / 2 m can; a matrix that is no covariance is ignored (counted), not fatal.
+  const auto with_covariance = [&](const char* vehicle, double sigma_deg, double sigma_m, double off_diagonal) {
+    msg::LocalMap c = lm;
+    c.vehicle_id(vehicle);
+    for (int r = 0; r < 6; ++r)
+      for (int k = 0; k < 6; ++k) {
+        const double s = r < 3 ? sigma_deg * M_PI / 180.0 : sigma_m;
+        c.T_WB_covariance().push_back(r == k ? s * s : off_diagonal);
+      }
+    maps_out.publish(c);
+  };
+  with_covariance("uav9", 0.2, 0.05, 0.0);
+  with_covariance("uav10", 5.0, 2.0, 0.0);
+  with_covariance("uav11", 1.0, 1.0, 5.0);  // not positive definite
   ASSERT_TRUE(testing::wait_for([&] {
     std::lock_guard lock(m);
-    return got.size() >= 2;
-  }, 20s));
+    return got.size() >= 5;
+  }, 30s));
   std::lock_guard lock(m);
-  const auto& ok = got[0].vehicle_id() == "uav7" ? got[0] : got[1];
-  const auto& no = got[0].vehicle_id() == "uav7" ? got[1] : got[0];
+  const auto of = [&](const std::string& vehicle) -> const msg::Registration& {
+    return *std::find_if(got.begin(), got.end(), [&](const auto& r) { return r.vehicle_id() == vehicle; });
+  };
+  EXPECT_EQ(of("uav9").status(), msg::REG_REJECTED_CORRECTION) << of("uav9").reason();
+  EXPECT_NE(of("uav9").reason().find("Mahalanobis"), std::string::npos) << of("uav9").reason();
+  EXPECT_EQ(of("uav10").status(), msg::REG_ACCEPTED) << of("uav10").reason();
+  EXPECT_EQ(of("uav11").status(), msg::REG_ACCEPTED) << of("uav11").reason();
+  EXPECT_EQ(counters.get("covariance_unusable"), 1u);
+  const auto& ok = of("uav7");
+  const auto& no = of("uav8");
   EXPECT_EQ(ok.status(), msg::REG_ACCEPTED) << ok.reason();
   EXPECT_EQ(ok.keyframe_stamp_ns(), 123);
   const Eigen::Isometry3d residual = dds::from_msg(ok.correction_W()) * error;  // identity when exact
@@ -187,7 +210,7 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
   EXPECT_GT(ok.inliers(), 300u);
   EXPECT_EQ(no.status(), msg::REG_REJECTED_NO_MAP);
   EXPECT_FALSE(no.reason().empty());
-  EXPECT_EQ(counters.get("registrations_out"), 2u);
+  EXPECT_EQ(counters.get("registrations_out"), 5u);
 }
 
 TEST(RegistrationNodeParts, TileKeysAndStatusesMap) {

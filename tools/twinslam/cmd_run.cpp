@@ -109,7 +109,9 @@ int run_pipeline(const RunOptions& o) {
     record.features(m.stamp_ns(), m.tracking_ms());
   };
   hooks.odometry = [&](const msg::Odometry& m) { record.odometry(to_record(m), since_ms()); };
-  hooks.local_map = [&](const msg::LocalMap& m) { record.local_map(m.keyframe_stamp_ns(), since_ms()); };
+  hooks.local_map = [&](const msg::LocalMap& m) {
+    record.local_map(m.keyframe_stamp_ns(), since_ms(), m.landmarks().size());
+  };
   hooks.registration = [&](const msg::Registration& m) { record.registration(to_record(m), since_ms()); };
   TopicMonitor monitor(recorder, /*reliable=*/true, hooks);
 
@@ -203,6 +205,9 @@ int run_pipeline(const RunOptions& o) {
   run["aligned_from_stamp_ns"] = aligned ? nlohmann::json(*aligned) : nlohmann::json();
   run["aligned_after_s"] = aligned && first ? nlohmann::json(1e-9 * static_cast<double>(*aligned - *first))
                                             : nlohmann::json();
+  if (const auto [median, largest] = record.local_map_landmarks(); largest > 0) {
+    run["local_map_landmarks"] = {{"median", median}, {"max", largest}};
+  }
   if (const auto latency = record.pipeline_latency(); latency.count > 0) {
     // LocalMap -> Registration, both seen by this process (services/registration/README.md).
     run["registration_latency_ms"] = {{"count", latency.count}, {"median", latency.median_ms}, {"p99", latency.p99_ms}};

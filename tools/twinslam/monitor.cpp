@@ -20,7 +20,9 @@ const std::function<void(const T&)>* hook_for(const MonitorHooks& h) {
 }
 }  // namespace
 
-TopicMonitor::TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks) : hooks_(std::move(hooks)) {
+TopicMonitor::~TopicMonitor() { node_.close_readers(); }
+
+TopicMonitor::TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks) : node_(node), hooks_(std::move(hooks)) {
   for (const auto& spec : dds::topics::kAll) {
     const auto profile = reliable ? dds::reader_profile(spec.family) : dds::kMonitorReaderProfile;
     if (spec.name == dds::topics::kHeartbeat.name) {

@@ -27,9 +27,17 @@ void RunRecord::odometry(const OdometryRecord& r, double wall_ms) {
   odometry_.emplace_back(r, it == frame_wall_ms_.end() ? -1.0 : wall_ms - it->second);
 }
 
-void RunRecord::local_map(std::int64_t keyframe_stamp_ns, double wall_ms) {
+void RunRecord::local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::size_t landmarks) {
   std::lock_guard lock(mutex_);
-  local_map_wall_ms_.emplace(keyframe_stamp_ns, wall_ms);  // the first sighting counts
+  if (local_map_wall_ms_.emplace(keyframe_stamp_ns, wall_ms).second) local_map_sizes_.push_back(landmarks);
+}
+
+std::pair<std::size_t, std::size_t> RunRecord::local_map_landmarks() const {
+  std::lock_guard lock(mutex_);
+  if (local_map_sizes_.empty()) return {0, 0};
+  std::vector<std::size_t> v = local_map_sizes_;
+  std::sort(v.begin(), v.end());
+  return {v[v.size() / 2], v.back()};
 }
 
 void RunRecord::registration(RegistrationRecord r, double wall_ms) {

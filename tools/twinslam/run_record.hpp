@@ -45,7 +45,7 @@ class RunRecord {
   void frame_in(std::int64_t stamp_ns, double wall_ms);                 // image or feature frame sent by ingest
   void features(std::int64_t stamp_ns, double tracking_ms);
   void odometry(const OdometryRecord& r, double wall_ms);
-  void local_map(std::int64_t keyframe_stamp_ns, double wall_ms);      // a LocalMap seen on the wire
+  void local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::size_t landmarks);  // a LocalMap on the wire
   void registration(RegistrationRecord r, double wall_ms);             // fills r.pipeline_latency_ms
   // Median and 99th percentile of pipeline_latency_ms over the registrations whose LocalMap was seen [ms].
   struct Latency {
@@ -53,6 +53,8 @@ class RunRecord {
     double median_ms = 0, p99_ms = 0;
   };
   Latency pipeline_latency() const;
+  // Median and largest number of landmarks per LocalMap (registration's source cloud before preprocessing).
+  std::pair<std::size_t, std::size_t> local_map_landmarks() const;
 
   std::size_t odometry_count() const;
   // Stamp of the first pose in W (ODOM_ALIGNED) and of the first estimated pose, if any.
@@ -66,6 +68,7 @@ class RunRecord {
   std::map<std::int64_t, double> frame_wall_ms_, tracking_ms_, local_map_wall_ms_;
   std::vector<std::pair<OdometryRecord, double>> odometry_;  // with end-to-end ms
   std::vector<RegistrationRecord> registrations_;
+  std::vector<std::size_t> local_map_sizes_;
 };
 
 }  // namespace twinslam::cli

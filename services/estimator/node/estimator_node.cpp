@@ -1,5 +1,7 @@
 #include "estimator_node.hpp"
 
+#include "twinslam/estimator/map_registration_factor.hpp"
+
 #include <algorithm>
 #include <array>
 
@@ -31,6 +33,7 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
       fusion_(estimator_, options.fusion, options.initial_pose),
       enu_(options.origin ? std::make_unique<twin::EnuFrame>(*options.origin) : nullptr),
       await_registration_(options.await_registration),
+      send_covariance_(options.fusion.fuse_registrations),
       registration_wait_(options.registration_wait),
       odometry_(node.writer<msg::Odometry>(dds::topics::kOdometry)),
       local_map_(node.writer<msg::LocalMap>(dds::topics::kLocalMap)),
@@ -158,6 +161,14 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
         ml.p_L(to_msg(l.p_L));
         ml.quality(static_cast<float>(l.quality));
         lm.landmarks().push_back(ml);
+      }
+      // Once in W, the keyframe's covariance lets registration gate a correction by the estimator's own uncertainty.
+      if (send_covariance_ && estimator_.world_aligned()) {
+        if (const auto cov = estimator_.pose_covariance_world(map->keyframe_stamp_ns)) {
+          const Eigen::Matrix<double, 6, 6> c = to_registration_order(*cov, (map->T_WL * map->T_LB).linear());
+          for (int r = 0; r < 6; ++r)
+            for (int k = 0; k < 6; ++k) lm.T_WB_covariance().push_back(c(r, k));
+        }
       }
       local_map_.publish(lm);
       counters_.add("local_maps_out");

@@ -55,6 +55,7 @@ class EstimatorNode {
   GlobalFusion fusion_;               // likewise
   std::unique_ptr<twin::EnuFrame> enu_;  // lat/lon/alt -> W (null without an origin)
   bool await_registration_;
+  bool send_covariance_;  // LocalMap.T_WB_covariance: only when registrations are fused (it costs a dense inverse)
   std::map<std::string, unsigned long long> reported_;  // fusion counts already in the heartbeat
   std::chrono::milliseconds registration_wait_;
   dds::Writer<msg::Odometry> odometry_;

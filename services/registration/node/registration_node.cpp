@@ -1,5 +1,7 @@
 #include "registration_node.hpp"
 
+#include <Eigen/Cholesky>
+
 #include <cstdio>
 #include <optional>
 
@@ -102,6 +104,12 @@ void RegistrationNode::run() {
   }
 }
 
+// Finite, symmetric and positive definite: what register_cloud requires of a prior covariance.
+bool usable_covariance(const Matrix6d& S) {
+  return S.allFinite() && (S - S.transpose()).norm() <= 1e-9 * std::max(1.0, S.norm()) &&
+         Eigen::LLT<Matrix6d>(S).info() == Eigen::Success;
+}
+
 void RegistrationNode::serve(const Pending& p) {
   const msg::LocalMap& m = *p.map;
   SourceInput source;
@@ -121,7 +129,17 @@ void RegistrationNode::serve(const Pending& p) {
       out.status(msg::REG_REJECTED_NO_MAP);
       out.reason("no twin tiles within " + std::to_string(static_cast<int>(0.5 * options_.window_m)) + " m yet");
     } else {
-      const RegistrationResult r = register_cloud(options_.registration, twin_.index(), source);
+      std::optional<Matrix6d> covariance;  // the estimator's, in the correction's order (LocalMap.T_WB_covariance)
+      if (m.T_WB_covariance().size() == 36) {
+        covariance.emplace();
+        for (int r = 0; r < 6; ++r)
+          for (int k = 0; k < 6; ++k) (*covariance)(r, k) = m.T_WB_covariance()[6 * r + k];
+        if (!usable_covariance(*covariance)) {
+          covariance.reset();  // not a covariance: register without the gate rather than drop the cloud
+          counters_.add("covariance_unusable");
+        }
+      }
+      const RegistrationResult r = register_cloud(options_.registration, twin_.index(), source, covariance);
       out.status(to_msg(r.status));
       out.reason(r.reason);
       out.correction_W(dds::to_msg(r.correction_W));

@@ -21,7 +21,15 @@ LandmarkHorizon::LandmarkHorizon(const LandmarkHorizonConfig& config) : config_(
 
 std::vector<LandmarkEstimate> LandmarkHorizon::update(std::int64_t stamp_ns, const Eigen::Vector3d& p_LB,
                                                       const std::vector<LandmarkEstimate>& window) {
-  for (const LandmarkEstimate& l : window) seen_[l.id] = {l, stamp_ns};
+  for (const LandmarkEstimate& l : window) {
+    // Remember the estimate from when the landmark was best observed: its quality falls as the keyframes that saw it
+    // leave the window (two observations left: quality <= 0.25), so its last report before leaving is its worst,
+    // though the position is as good as when it had all of them.
+    auto [it, added] = seen_.try_emplace(l.id, Seen{l, l, stamp_ns});
+    if (!added && l.quality >= it->second.best.quality) it->second.best = l;
+    it->second.current = l;
+    it->second.last_stamp_ns = stamp_ns;
+  }
   const auto horizon_ns = static_cast<std::int64_t>(std::llround(config_.horizon_s * 1e9));
   std::vector<const Seen*> kept;
   for (auto it = seen_.begin(); it != seen_.end();) {
@@ -30,7 +38,7 @@ std::vector<LandmarkEstimate> LandmarkHorizon::update(std::int64_t stamp_ns, con
       it = seen_.erase(it);  // too old for any later keyframe as well
       continue;
     }
-    if (s.last_stamp_ns == stamp_ns || (s.estimate.p_L - p_LB).norm() <= config_.horizon_m) kept.push_back(&s);
+    if (s.last_stamp_ns == stamp_ns || (s.best.p_L - p_LB).norm() <= config_.horizon_m) kept.push_back(&s);
     ++it;
   }
   if (kept.size() > static_cast<std::size_t>(config_.max_landmarks)) {
@@ -38,11 +46,12 @@ std::vector<LandmarkEstimate> LandmarkHorizon::update(std::int64_t stamp_ns, con
     std::stable_sort(kept.begin(), kept.end(),
                      [](const Seen* a, const Seen* b) { return a->last_stamp_ns > b->last_stamp_ns; });
     kept.resize(static_cast<std::size_t>(config_.max_landmarks));
-    std::sort(kept.begin(), kept.end(), [](const Seen* a, const Seen* b) { return a->estimate.id < b->estimate.id; });
+    std::sort(kept.begin(), kept.end(), [](const Seen* a, const Seen* b) { return a->current.id < b->current.id; });
   }
   std::vector<LandmarkEstimate> out;
   out.reserve(kept.size());
-  for (const Seen* s : kept) out.push_back(s->estimate);
+  // The window's own landmarks as the window has them now; the others as they were best observed.
+  for (const Seen* s : kept) out.push_back(s->last_stamp_ns == stamp_ns ? s->current : s->best);
   return out;
 }
 

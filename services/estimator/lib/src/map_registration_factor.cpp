@@ -68,4 +68,13 @@ ceres::CostFunction* new_map_registration_factor(const MapRegistration& m) {
   return new ceres::AutoDiffCostFunction<MapRegistrationResidual, 6, kPoseSize, kWorldAlignmentSize>(f);
 }
 
+Eigen::Matrix<double, 6, 6> to_registration_order(const Eigen::Matrix<double, 6, 6>& cov_pW_thetaB,
+                                                  const Eigen::Matrix3d& R_WB) {
+  Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();  // (dtheta_W, dp_W) = J (dp_W, dtheta_B)
+  J.block<3, 3>(0, 3) = R_WB;
+  J.block<3, 3>(3, 0) = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix<double, 6, 6> out = J * cov_pW_thetaB * J.transpose();
+  return 0.5 * (out + out.transpose());
+}
+
 }  // namespace twinslam::estimator

@@ -66,7 +66,10 @@ bool reject_geometry(const RegistrationConfig& c, const std::optional<Matrix6d>&
     return false;
   }
   if (prior) {
-    r.mahalanobis_sq = r.correction_xi.dot(Eigen::LLT<Matrix6d>(*prior).solve(r.correction_xi));
+    Matrix6d S = *prior;
+    S.diagonal().head<3>().array() += std::pow(c.mahalanobis_floor_deg * M_PI / 180.0, 2);
+    S.diagonal().tail<3>().array() += c.mahalanobis_floor_m * c.mahalanobis_floor_m;
+    r.mahalanobis_sq = r.correction_xi.dot(Eigen::LLT<Matrix6d>(S).solve(r.correction_xi));
     if (r.mahalanobis_sq > c.max_mahalanobis_sq) {
       r.status = RegistrationStatus::kCorrectionTooLarge;
       r.reason = fmt("correction's Mahalanobis distance^2 %.2f > max_mahalanobis_sq %.2f", r.mahalanobis_sq,

@@ -61,6 +61,8 @@ const std::vector<Key>& keys() {
       {"max_rmse_m", &C::max_rmse_m},
       {"max_zero_directions", &C::max_zero_directions},
       {"max_mahalanobis_sq", &C::max_mahalanobis_sq},
+      {"mahalanobis_floor_m", &C::mahalanobis_floor_m},
+      {"mahalanobis_floor_deg", &C::mahalanobis_floor_deg},
   };
   return k;
 }
@@ -130,6 +132,8 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(max_zero_directions >= 0 && max_zero_directions <= 6, s, "max_zero_directions", "must lie in [0, 6]",
         max_zero_directions);
   check(pos(max_mahalanobis_sq), s, "max_mahalanobis_sq", "must be > 0", max_mahalanobis_sq);
+  check(nonneg(mahalanobis_floor_m), s, "mahalanobis_floor_m", "must be >= 0 m", mahalanobis_floor_m);
+  check(nonneg(mahalanobis_floor_deg), s, "mahalanobis_floor_deg", "must be >= 0 deg", mahalanobis_floor_deg);
 }
 
 RegistrationConfig parse_registration_config(const std::string& text, const std::string& file,

@@ -34,7 +34,8 @@ class LandmarkHorizon {
   explicit LandmarkHorizon(const LandmarkHorizonConfig& config = {});
 
   // The window's landmarks at keyframe `stamp_ns` (body at p_LB): remembers them and returns the LocalMap's cloud,
-  // window landmarks (current estimates) and remembered ones within the horizon, sorted by id. Stamps must not go
+  // window landmarks (their current estimates) and remembered ones within the horizon (each with the estimate and
+  // quality of the keyframe where its quality was highest), sorted by id. Stamps must not go
   // back (a reset of the estimator calls clear()).
   std::vector<LandmarkEstimate> update(std::int64_t stamp_ns, const Eigen::Vector3d& p_LB,
                                        const std::vector<LandmarkEstimate>& window);
@@ -43,7 +44,8 @@ class LandmarkHorizon {
 
  private:
   struct Seen {
-    LandmarkEstimate estimate;
+    LandmarkEstimate current;  // at the last keyframe that had it in the window
+    LandmarkEstimate best;     // at the keyframe where its quality was highest
     std::int64_t last_stamp_ns = 0;
   };
   LandmarkHorizonConfig config_;

@@ -40,4 +40,10 @@ Eigen::Matrix<double, 6, 6> information_square_root(const Eigen::Matrix<double, 
 // The factor; the caller owns the result.
 ceres::CostFunction* new_map_registration_factor(const MapRegistration& m);
 
+// The estimator's keyframe covariance as pose_covariance_world() gives it, [dp_W (m), dtheta_B (rad)] (translation
+// first, right perturbation), in a Registration's order and perturbation: (dtheta_W, dp_W) with dtheta_W =
+// R_WB dtheta_B (rotation first, left perturbation in W). What LocalMap.T_WB_covariance carries.
+Eigen::Matrix<double, 6, 6> to_registration_order(const Eigen::Matrix<double, 6, 6>& cov_pW_thetaB,
+                                                  const Eigen::Matrix3d& R_WB);
+
 }  // namespace twinslam::estimator

@@ -47,6 +47,10 @@ struct RegistrationConfig {
   double max_rmse_m = 0.3;            // inlier point-to-plane RMSE above this: rejected [m]
   int max_zero_directions = 2;        // more poorly observed directions than this: rejected (degenerate)
   double max_mahalanobis_sq = 22.46;  // correction vs the estimator's covariance: chi^2(6 dof) at 99.9 %
+  // ... whose diagonal gets the registration's own uncertainty first (the twin's modelling error, ICP noise), so a
+  // confident estimator does not reject corrections smaller than what registration can resolve:
+  double mahalanobis_floor_m = 0.1;     // [m] added in quadrature to each position sigma
+  double mahalanobis_floor_deg = 0.5;   // [deg] added in quadrature to each rotation sigma
 
   bool operator==(const RegistrationConfig&) const = default;
 
