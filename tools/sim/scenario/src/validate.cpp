@@ -107,6 +107,11 @@ void validate_scenario_at(const Scenario& s, const std::string& file, const std:
   c.require(s.twin.added_buildings >= 0, "twin.added_buildings", "must be >= 0");
   c.require(s.twin.offset_m.allFinite() && s.twin.offset_m.norm() <= 1000, "twin.offset_m",
             "must be finite and shorter than 1000 m");
+  // The upper bound of the count depends on the city (buildings - 1 - missing): derive_twin checks it.
+  c.require(s.twin.shifted_buildings.count >= 0, "twin.shifted_buildings.count", "must be >= 0");
+  c.require(std::isfinite(s.twin.shifted_buildings.offset_m) && s.twin.shifted_buildings.offset_m >= 0 &&
+                s.twin.shifted_buildings.offset_m <= kMaxBuildingShift_m,
+            "twin.shifted_buildings.offset_m", "must be in [0, " + std::to_string(int(kMaxBuildingShift_m)) + "] m");
 }
 
 }  // namespace detail

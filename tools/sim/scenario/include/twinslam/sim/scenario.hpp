@@ -62,11 +62,20 @@ struct GnssSimConfig {
   double sigma_m = 1.5;                       // gaussian: horizontal standard deviation [m]
 };
 
+// Whole buildings the twin has in the wrong place (a mapping error): `count` of them moved horizontally by `offset_m`
+// in a seeded random direction each. More than a street width (12 m) would make it a different city, not an error.
+inline constexpr double kMaxBuildingShift_m = 20.0;
+struct ShiftedBuildings {
+  int count = 0;
+  double offset_m = 0;                        // [m], horizontal
+};
+
 struct TwinConfig {
   double noise_m = 0.2;                       // perturbation of twin surfaces [m]
   int missing_buildings = 0;                  // buildings removed from the twin (environment change)
   int added_buildings = 0;                    // buildings in the twin that do not exist
   Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();  // georeferencing error of the twin [m, W]
+  ShiftedBuildings shifted_buildings;         // buildings misplaced in the twin
 };
 
 struct Scenario {
