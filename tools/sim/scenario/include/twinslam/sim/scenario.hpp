@@ -90,6 +90,22 @@ struct Scenario {
   TwinConfig twin;
 };
 
+// Street grid of a procedural city: the centrelines of the streets between blocks (not the outer ring at the city's
+// edge, which has buildings on one side only). Empty when the world has no grid.
+struct StreetGrid {
+  std::vector<double> east_m;                  // E of the north-south streets, increasing [m]
+  std::vector<double> north_m;                 // N of the east-west streets, increasing [m]
+  double width_m = 0;                          // kerb to kerb [m]
+};
+
+// A building as the trajectory generator sees it: its footprint and how high it reaches.
+struct BuildingHint {
+  int id = 0;
+  std::vector<Eigen::Vector4d> rects_W;        // footprint as union of rectangles [min e, min n, max e, max n] [m]
+  double height_m = 0;                         // eave height above ground [m]
+  double top_m = 0;                            // highest point incl. roof structures [m]
+};
+
 // What the trajectory generator needs to know about the world (filled from the built city).
 struct SceneHints {
   Eigen::Vector2d tall_building_center_W = Eigen::Vector2d::Zero();  // [m, E N]
@@ -100,6 +116,11 @@ struct SceneHints {
   double clear_radius_m = 0;
   double ground_z_m = 0;                       // [m, U]
   std::array<double, 4> extent_W{-300, -300, 300, 300};  // min e, min n, max e, max n [m]
+  // For `streets` flights (all empty/0 when the world does not say):
+  StreetGrid streets;
+  std::vector<BuildingHint> buildings;
+  std::vector<Eigen::Vector4d> open_areas_W;   // whole blocks without buildings (parks) [min e, min n, max e, max n]
+  double furniture_top_m = 0;                  // highest tree or parked car above ground [m]
 };
 
 }  // namespace twinslam::sim
