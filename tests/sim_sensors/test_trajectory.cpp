@@ -73,6 +73,7 @@ TEST(SimFlight, BuiltinsRespectDroneLimitsAndStartMovingEarly) {
     EXPECT_NEAR(f.duration(), sc.trajectory.duration_s, 1e-9) << name;
     EXPECT_LE(st.max_speed_mps, lim.max_speed_mps) << name;
     EXPECT_LE(st.max_accel_mps2, 3.0) << name;
+    EXPECT_LE(st.max_jerk_mps3, lim.max_jerk_mps3) << name;
     EXPECT_LE(st.max_yaw_rate_dps, 45.0) << name;
     EXPECT_LE(st.max_tilt_deg, 25.0) << name;
     EXPECT_GE(st.min_up_m, sc.trajectory.altitude_m[0] - 1.0) << name;
@@ -81,10 +82,10 @@ TEST(SimFlight, BuiltinsRespectDroneLimitsAndStartMovingEarly) {
     EXPECT_GE(st.time_to_move_s, 0.0) << name;
     const FlightState end = f.at(f.duration());
     EXPECT_LT(end.v_W.norm(), 1e-9) << name;  // comes to rest
-    std::printf("%-12s length %.1f m, max speed %.2f m/s, accel %.2f m/s^2, yaw rate %.1f deg/s, tilt %.1f deg, "
-                "moving after %.2f s\n",
-                name.c_str(), st.length_m, st.max_speed_mps, st.max_accel_mps2, st.max_yaw_rate_dps, st.max_tilt_deg,
-                st.time_to_move_s);
+    std::printf("%-12s length %.1f m, max speed %.2f m/s, accel %.2f m/s^2, jerk %.2f m/s^3, yaw rate %.1f deg/s, "
+                "tilt %.1f deg, moving after %.2f s\n",
+                name.c_str(), st.length_m, st.max_speed_mps, st.max_accel_mps2, st.max_jerk_mps3, st.max_yaw_rate_dps,
+                st.max_tilt_deg, st.time_to_move_s);
   }
 }
 
