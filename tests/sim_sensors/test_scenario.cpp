@@ -99,6 +99,9 @@ TEST(SimScenario, ShiftedBuildingsErrorsNameTheKey) {
   EXPECT_NE(error_of("twin: {shifted_buildings: {count: 1, offset: 2}}\n")
                 .find("twin.shifted_buildings.offset: unknown key (known here: count, offset_m)"),
             std::string::npos);
+  EXPECT_NE(error_of("city: {source: osm, path: a.osm}\ntrajectory: {type: streets}\n")
+                .find("trajectory.type: streets needs the procedural city"),
+            std::string::npos);
 }
 
 TEST(SimScenario, BuiltinsAreValidAndDistinct) {

@@ -28,7 +28,7 @@ struct CityConfig {
 };
 
 struct TrajectoryConfig {
-  std::string type = "loops";                 // loops | survey | waypoints
+  std::string type = "loops";                 // loops | survey | waypoints | streets
   double duration_s = 300;                    // [s]
   double speed_mps = 2.0;                     // cruise speed [m/s]
   std::array<double, 2> altitude_m{2, 17};    // min/max flight altitude above ground [m]
