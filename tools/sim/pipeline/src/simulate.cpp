@@ -69,7 +69,9 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
   summary.twin_triangles = twin.mesh.num_triangles();
 
   // Trajectory, IMU, GNSS, ground truth, dataset.yaml.
-  const SensorData sensors = write_sensor_dataset(dir, scenario, city.hints, TwinReference{"twin/twin.ply", "ENU@origin"});
+  const TwinReference twin_ref{"twin/twin.ply", "ENU@origin", twin.missing_building_ids, twin.added_building_ids,
+                               twin.shifted_building_ids, twin.shifted_building_offsets_W};
+  const SensorData sensors = write_sensor_dataset(dir, scenario, city.hints, twin_ref);
   summary.imu = sensors.imu.size();
   summary.gnss = sensors.gnss.size();
   summary.duration_s = sensors.trajectory.duration();
