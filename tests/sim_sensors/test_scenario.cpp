@@ -114,6 +114,13 @@ TEST(SimScenario, BuiltinsAreValidAndDistinct) {
   }
   EXPECT_EQ(builtin_scenario("city-loops").trajectory.type, "loops");
   EXPECT_EQ(builtin_scenario("city-survey").trajectory.type, "survey");
+  const Scenario long_flight = builtin_scenario("city-long");
+  EXPECT_EQ(long_flight.trajectory.type, "streets");
+  EXPECT_GE(long_flight.trajectory.duration_s, 12 * 60);
+  EXPECT_GE(long_flight.trajectory.speed_mps * (long_flight.trajectory.duration_s - 4), 2000);  // cruise length
+  EXPECT_GT(long_flight.twin.missing_buildings, 0);
+  EXPECT_GT(long_flight.twin.shifted_buildings.count, 0);
+  EXPECT_EQ(load_scenario("city-long").name, "city-long");
   EXPECT_LE(builtin_scenario("tiny").trajectory.duration_s, 30);
   EXPECT_THROW(builtin_scenario("mars"), UsageError);
   EXPECT_THROW(load_scenario("/nonexistent/scen.yaml"), InputError);

@@ -11,6 +11,7 @@
 #include "twinslam/core/error.hpp"
 #include "twinslam/sim/clock.hpp"
 #include "twinslam/sim/dataset_writer.hpp"
+#include "twinslam/sim/flight_surroundings.hpp"
 #include "twinslam/sim/scenario_io.hpp"
 #include "twinslam/sim/sim_camera.hpp"
 #include "twinslam/sim/world/city.hpp"
@@ -62,8 +63,11 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
     throw InputError("city.source: '" + scenario.city.source +
                      "' needs the twin-format loaders (not available yet); use 'procedural'");
   }
+  // The twin's changes hit the buildings a streets flight passes, so the flight is planned first.
   const City city = build_city(scenario.city, scenario.seed);
-  const Twin twin = derive_twin(city, scenario.twin, scenario.seed);
+  const std::vector<int> seen =
+      twin_change_candidates(scenario, city.hints, make_flight_trajectory(scenario, city.hints));
+  const Twin twin = derive_twin(city, scenario.twin, scenario.seed, seen);
   write_ply((dir / "twin/twin.ply").string(), twin.mesh, scenario.origin);
   summary.world_triangles = city.mesh.num_triangles();
   summary.twin_triangles = twin.mesh.num_triangles();

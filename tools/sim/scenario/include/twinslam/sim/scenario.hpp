@@ -1,7 +1,7 @@
 #pragma once
 // The simulator's scenario: every key of the scenario file in docs/CONTRACTS.md, with defaults and units.
-// Parsing, validation and the built-in scenarios (tiny, city-loops, city-survey): scenario_io.hpp. Every other
-// simulator module takes its own part of this struct.
+// Parsing, validation and the built-in scenarios (tiny, city-loops, city-survey, city-long): scenario_io.hpp. Every
+// other simulator module takes its own part of this struct.
 #include <array>
 #include <cstdint>
 #include <optional>

@@ -9,7 +9,7 @@
 
 namespace twinslam::sim {
 
-// Names accepted by builtin_scenario(): tiny, city-loops, city-survey.
+// Names accepted by builtin_scenario(): tiny, city-loops, city-survey, city-long.
 std::vector<std::string> builtin_scenario_names();
 
 // A built-in scenario by name; UsageError for an unknown name (the message lists the known ones).
