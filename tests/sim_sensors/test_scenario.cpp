@@ -35,7 +35,8 @@ trajectory:
 camera: {model: pinhole-radtan, width: 752, height: 480, rate_hz: 10, fov_deg: 90}
 imu: {rate_hz: 400, gyro_noise: 2.0e-3, accel_noise: 9.0e-3, gyro_walk: 4.0e-5, accel_walk: 2.0e-4}
 gnss: {rate_hz: 2, model: gaussian, sigma_m: 0.8}
-twin: {noise_m: 0.3, missing_buildings: 1, added_buildings: 2, offset_m: [1, -2, 0.5]}
+twin: {noise_m: 0.3, missing_buildings: 1, added_buildings: 2, offset_m: [1, -2, 0.5],
+       shifted_buildings: {count: 4, offset_m: 2.5}}
 )",
                                          "scen.yaml");
   EXPECT_EQ(s.seed, 11u);
@@ -55,6 +56,8 @@ twin: {noise_m: 0.3, missing_buildings: 1, added_buildings: 2, offset_m: [1, -2,
   EXPECT_DOUBLE_EQ(s.gnss.sigma_m, 0.8);
   EXPECT_EQ(s.twin.added_buildings, 2);
   EXPECT_DOUBLE_EQ(s.twin.offset_m.y(), -2);
+  EXPECT_EQ(s.twin.shifted_buildings.count, 4);
+  EXPECT_DOUBLE_EQ(s.twin.shifted_buildings.offset_m, 2.5);
   ASSERT_TRUE(s.camera.T_BC.has_value());  // filled with the default of the type
 }
 
@@ -77,6 +80,30 @@ TEST(SimScenario, ErrorsNameFileAndKey) {
   EXPECT_NE(error_of("base: nowhere\n").find("scen.yaml:1: base: unknown scenario 'nowhere'"), std::string::npos);
 }
 
+TEST(SimScenario, ShiftedBuildingsErrorsNameTheKey) {
+  EXPECT_EQ(Scenario{}.twin.shifted_buildings.count, 0);  // absent: nothing shifted
+  EXPECT_EQ(error_of("twin:\n  shifted_buildings: {count: -1}\n"),
+            "scen.yaml:2: twin.shifted_buildings.count: must be >= 0");
+  EXPECT_EQ(error_of("twin:\n  shifted_buildings: {count: 2, offset_m: 25}\n"),
+            "scen.yaml:2: twin.shifted_buildings.offset_m: must be in [0, 20] m");
+  EXPECT_EQ(error_of("twin: {shifted_buildings: {offset_m: -1}}\n"),
+            "scen.yaml:1: twin.shifted_buildings.offset_m: must be in [0, 20] m");
+  EXPECT_NE(error_of("twin: {shifted_buildings: {offset_m: nan}}\n")
+                .find("twin.shifted_buildings.offset_m: must be finite"),
+            std::string::npos);
+  EXPECT_NE(error_of("twin: {shifted_buildings: {count: 1.5}}\n")
+                .find("twin.shifted_buildings.count: expected an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of("twin: {shifted_buildings: 3}\n").find("twin.shifted_buildings: expected a mapping"),
+            std::string::npos);
+  EXPECT_NE(error_of("twin: {shifted_buildings: {count: 1, offset: 2}}\n")
+                .find("twin.shifted_buildings.offset: unknown key (known here: count, offset_m)"),
+            std::string::npos);
+  EXPECT_NE(error_of("city: {source: osm, path: a.osm}\ntrajectory: {type: streets}\n")
+                .find("trajectory.type: streets needs the procedural city"),
+            std::string::npos);
+}
+
 TEST(SimScenario, BuiltinsAreValidAndDistinct) {
   for (const auto& name : builtin_scenario_names()) {
     const Scenario s = builtin_scenario(name);
@@ -87,6 +114,13 @@ TEST(SimScenario, BuiltinsAreValidAndDistinct) {
   }
   EXPECT_EQ(builtin_scenario("city-loops").trajectory.type, "loops");
   EXPECT_EQ(builtin_scenario("city-survey").trajectory.type, "survey");
+  const Scenario long_flight = builtin_scenario("city-long");
+  EXPECT_EQ(long_flight.trajectory.type, "streets");
+  EXPECT_GE(long_flight.trajectory.duration_s, 12 * 60);
+  EXPECT_GE(long_flight.trajectory.speed_mps * (long_flight.trajectory.duration_s - 4), 2000);  // cruise length
+  EXPECT_GT(long_flight.twin.missing_buildings, 0);
+  EXPECT_GT(long_flight.twin.shifted_buildings.count, 0);
+  EXPECT_EQ(load_scenario("city-long").name, "city-long");
   EXPECT_LE(builtin_scenario("tiny").trajectory.duration_s, 30);
   EXPECT_THROW(builtin_scenario("mars"), UsageError);
   EXPECT_THROW(load_scenario("/nonexistent/scen.yaml"), InputError);
@@ -112,7 +146,12 @@ TEST(SimScenario, DefaultExtrinsicsLookForwardOrDownForward) {
 }
 
 TEST(SimScenario, YamlEchoReadsBackIdentically) {
+  for (const auto& name : builtin_scenario_names()) {
+    const std::string text = scenario_to_yaml(builtin_scenario(name));
+    EXPECT_EQ(scenario_to_yaml(parse_scenario_yaml(text, "echo.yaml")), text) << name;
+  }
   Scenario s = builtin_scenario("city-survey");
+  s.twin.shifted_buildings = {7, 1.0 / 3.0};
   s.seed = 1234567890123ull;
   s.origin.lat_deg = 47.376912345678901;
   s.city.path = "some \"odd\" path.osm";
@@ -125,6 +164,8 @@ TEST(SimScenario, YamlEchoReadsBackIdentically) {
   EXPECT_EQ(r.seed, s.seed);
   EXPECT_EQ(r.origin.lat_deg, s.origin.lat_deg);  // exact: shortest round-trip numbers
   EXPECT_EQ(r.imu.gyro_noise, s.imu.gyro_noise);
+  EXPECT_EQ(r.twin.shifted_buildings.count, 7);
+  EXPECT_EQ(r.twin.shifted_buildings.offset_m, 1.0 / 3.0);
   EXPECT_EQ(*r.city.path, *s.city.path);
   EXPECT_TRUE(r.camera.T_BC->isApprox(*s.camera.T_BC, 0.0));
 }

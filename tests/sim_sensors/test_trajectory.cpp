@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "test_support.hpp"
 #include "twinslam/core/error.hpp"
@@ -73,6 +74,7 @@ TEST(SimFlight, BuiltinsRespectDroneLimitsAndStartMovingEarly) {
     EXPECT_NEAR(f.duration(), sc.trajectory.duration_s, 1e-9) << name;
     EXPECT_LE(st.max_speed_mps, lim.max_speed_mps) << name;
     EXPECT_LE(st.max_accel_mps2, 3.0) << name;
+    EXPECT_LE(st.max_jerk_mps3, lim.max_jerk_mps3) << name;
     EXPECT_LE(st.max_yaw_rate_dps, 45.0) << name;
     EXPECT_LE(st.max_tilt_deg, 25.0) << name;
     EXPECT_GE(st.min_up_m, sc.trajectory.altitude_m[0] - 1.0) << name;
@@ -81,10 +83,10 @@ TEST(SimFlight, BuiltinsRespectDroneLimitsAndStartMovingEarly) {
     EXPECT_GE(st.time_to_move_s, 0.0) << name;
     const FlightState end = f.at(f.duration());
     EXPECT_LT(end.v_W.norm(), 1e-9) << name;  // comes to rest
-    std::printf("%-12s length %.1f m, max speed %.2f m/s, accel %.2f m/s^2, yaw rate %.1f deg/s, tilt %.1f deg, "
-                "moving after %.2f s\n",
-                name.c_str(), st.length_m, st.max_speed_mps, st.max_accel_mps2, st.max_yaw_rate_dps, st.max_tilt_deg,
-                st.time_to_move_s);
+    std::printf("%-12s length %.1f m, max speed %.2f m/s, accel %.2f m/s^2, jerk %.2f m/s^3, yaw rate %.1f deg/s, "
+                "tilt %.1f deg, moving after %.2f s\n",
+                name.c_str(), st.length_m, st.max_speed_mps, st.max_accel_mps2, st.max_jerk_mps3, st.max_yaw_rate_dps,
+                st.max_tilt_deg, st.time_to_move_s);
   }
 }
 
@@ -180,6 +182,89 @@ TEST(SimFlight, WaypointsArePassedAndTooShortDurationIsNamed) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("trajectory.duration_s"), std::string::npos) << e.what();
   }
+}
+
+std::string trajectory_error(const Scenario& sc, const SceneHints& hints) {
+  try {
+    make_flight_trajectory(sc, hints);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// 2.3 km through the streets of the default city's grid (test_support.hpp: no buildings, one park).
+Scenario streets_scenario() {
+  Scenario sc = builtin_scenario("city-loops");
+  sc.name = "streets";
+  sc.trajectory.type = "streets";
+  sc.trajectory.duration_s = 780;
+  sc.trajectory.speed_mps = 3;
+  sc.trajectory.altitude_m = {15, 35};
+  return sc;
+}
+
+TEST(SimFlight, StreetsStayOnTheStreetsOncePerIntersectionLookingForward) {
+  const Scenario sc = streets_scenario();
+  const SceneHints hints = hints_for(sc);
+  const FlightTrajectory f = make_flight_trajectory(sc, hints);
+  const StreetGrid& grid = hints.streets;
+  const Eigen::Vector4d& park = hints.open_areas_W.front();
+  std::map<std::pair<int, int>, int> visits;  // intersection -> separate passes through its centre square
+  std::pair<int, int> inside{-1, -1};
+  int forward = 0, moving = 0;
+  for (double t = 0; t <= f.duration(); t += 0.2) {
+    const FlightState s = f.at(t);
+    const Eigen::Vector2d p = s.p_W.head<2>();
+    auto nearest = [](const std::vector<double>& lines, double x) {
+      int k = 0;
+      for (int i = 1; i < static_cast<int>(lines.size()); ++i)
+        if (std::abs(lines[i] - x) < std::abs(lines[k] - x)) k = i;
+      return k;
+    };
+    const int i = nearest(grid.east_m, p.x()), j = nearest(grid.north_m, p.y());
+    const double off_e = std::abs(p.x() - grid.east_m[i]), off_n = std::abs(p.y() - grid.north_m[j]);
+    const bool in_park = p.x() > park[0] - 6 && p.x() < park[2] + 6 && p.y() > park[1] - 6 && p.y() < park[3] + 6;
+    ASSERT_TRUE(std::min(off_e, off_n) <= 0.5 * grid.width_m || in_park) << "off the streets at t " << t;
+    const std::pair<int, int> here = off_e < 0.5 * grid.width_m && off_n < 0.5 * grid.width_m
+                                         ? std::make_pair(i, j) : std::make_pair(-1, -1);
+    if (here != inside && here.first >= 0) ++visits[here];
+    inside = here;
+    if (s.v_W.head<2>().norm() > 1.0) {
+      ++moving;
+      const Eigen::Vector3d axis_W = s.R_WB * camera_T_BC(sc).linear().col(2);
+      forward += axis_W.head<2>().normalized().dot(s.v_W.head<2>().normalized()) > std::cos(10 * M_PI / 180);
+    }
+  }
+  for (const auto& [node, n] : visits) EXPECT_EQ(n, 1) << "intersection " << node.first << "," << node.second;
+  EXPECT_GE(visits.size(), 30u);  // 2.3 km over 60 m blocks
+  EXPECT_GT(forward, 0.9 * moving);  // camera along the street but in the turns
+  // The diagonal across the park: its centre is flown over.
+  double to_park = 1e9;
+  for (double t = 0; t <= f.duration(); t += 0.2)
+    to_park = std::min(to_park, (f.at(t).p_W.head<2>() - 0.5 * (park.head<2>() + park.tail<2>())).norm());
+  EXPECT_LT(to_park, 2.0);
+}
+
+TEST(SimFlight, StreetsNameWhatStopsThem) {
+  Scenario sc = streets_scenario();
+  SceneHints hints = hints_for(sc);
+  sc.trajectory.altitude_m = {6, 30};  // into the 10 m street trees
+  EXPECT_NE(trajectory_error(sc, hints).find("streets: trajectory.altitude_m: a streets flight must stay >= 14 m"),
+            std::string::npos) << trajectory_error(sc, hints);
+  sc = streets_scenario();
+  EXPECT_NE(trajectory_error(sc, city_hints(600, 19.8)).find("streets: trajectory.type: streets needs a street grid"),
+            std::string::npos);
+  sc.city.size_m = 200;  // 3 x 3 blocks: 2 x 2 intersections, no 3-block stretch
+  EXPECT_NE(trajectory_error(sc, hints_for(sc)).find("streets: city.size_m: the street grid (2 x 2 intersections)"),
+            std::string::npos) << trajectory_error(sc, hints_for(sc));
+  sc = streets_scenario();
+  sc.trajectory.duration_s = 3600;  // 10.8 km do not fit 8 x 8 intersections without repeating a street
+  EXPECT_NE(trajectory_error(sc, hints).find("streets: city.size_m: the street grid (8 x 8 intersections) holds no"),
+            std::string::npos) << trajectory_error(sc, hints);
+  hints.open_areas_W.clear();
+  sc = streets_scenario();
+  EXPECT_NE(trajectory_error(sc, hints).find("city.size_m: no park"), std::string::npos);
 }
 
 TEST(SimFlight, TooFastIsRejectedNamingTheKey) {

@@ -108,10 +108,19 @@ TEST_F(SimWriters, GroundTruthFilesHoldTheTrajectory) {
 TEST_F(SimWriters, DatasetYamlEchoesTheScenario) {
   Scenario sc = builtin_scenario("city-survey");
   sc.trajectory.duration_s = 40;
-  write_dataset_yaml(root_, sc, TwinReference{"twin/", "EPSG:2056"});
+  TwinReference twin{"twin/", "EPSG:2056"};
+  twin.missing_building_ids = {3, 17};
+  twin.shifted_building_ids = {5};
+  twin.shifted_building_offsets_W = {Eigen::Vector3d(0.1, -3.9987654321, 0)};
+  write_dataset_yaml(root_, sc, twin);
   const YAML::Node y = YAML::LoadFile((root_ / "dataset.yaml").string());
   EXPECT_EQ(y["origin"]["lat"].as<double>(), sc.origin.lat_deg);
   EXPECT_EQ(y["twin"]["crs"].as<std::string>(), "EPSG:2056");
+  // Where the twin is wrong, for evaluating registration there.
+  EXPECT_EQ(y["twin"]["missing_building_ids"].as<std::vector<int>>(), twin.missing_building_ids);
+  EXPECT_EQ(y["twin"]["added_building_ids"].size(), 0u);
+  EXPECT_EQ(y["twin"]["shifted_building_ids"].as<std::vector<int>>(), twin.shifted_building_ids);
+  EXPECT_EQ(y["twin"]["shifted_building_offsets_m"][0][1].as<double>(), -3.9987654321);
   EXPECT_EQ(y["stamp_epoch_ns"].as<std::int64_t>(), kEpochNs);
   YAML::Emitter e;
   e << y["scenario"];

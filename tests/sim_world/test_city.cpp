@@ -61,6 +61,39 @@ TEST(SimWorldCity, HasEveryKindVariedFootprintsAndEmptyLots) {
   EXPECT_GE(hi, 27.0);
 }
 
+TEST(SimWorldCity, HintsDescribeTheStreetsParksAndFootprints) {
+  CityConfig config;
+  config.size_m = 300;  // 5 x 5 blocks: 4 streets between them on each axis
+  const City city = build_city(config, 7);
+  const StreetGrid& g = city.hints.streets;
+  ASSERT_EQ(g.east_m.size(), 4u);
+  EXPECT_EQ(g.north_m, g.east_m);
+  EXPECT_DOUBLE_EQ(g.width_m, city.layout.street_width_m);
+  // No footprint reaches into a street, and every gap between two blocks has a centreline in its middle.
+  for (const Building& b : city.buildings)
+    for (const Eigen::Vector4d& r : b.rects_W)
+      for (const double x : g.east_m) {
+        EXPECT_TRUE(r[2] <= x - 0.5 * g.width_m || r[0] >= x + 0.5 * g.width_m) << "building " << b.id;
+        EXPECT_TRUE(r[3] <= x - 0.5 * g.width_m || r[1] >= x + 0.5 * g.width_m) << "building " << b.id;
+      }
+  for (std::size_t k = 1; k < g.east_m.size(); ++k)
+    EXPECT_DOUBLE_EQ(g.east_m[k] - g.east_m[k - 1], city.layout.block_size_m + city.layout.street_width_m);
+  // Footprints as the world has them; parks are empty lots with no building on them.
+  ASSERT_EQ(city.hints.buildings.size(), city.buildings.size());
+  for (const Building& b : city.buildings) {
+    EXPECT_EQ(city.hints.buildings[b.id].rects_W, b.rects_W);
+    EXPECT_EQ(city.hints.buildings[b.id].top_m, b.top_m);
+  }
+  const City big = build_city(CityConfig{}, 7);
+  EXPECT_GT(big.hints.open_areas_W.size(), 0u);
+  for (const Eigen::Vector4d& park : big.hints.open_areas_W) {
+    EXPECT_NE(std::find(big.empty_lots_W.begin(), big.empty_lots_W.end(), park), big.empty_lots_W.end());
+    EXPECT_DOUBLE_EQ(park[2] - park[0], big.layout.block_size_m);  // whole blocks
+  }
+  EXPECT_GT(big.hints.furniture_top_m, 5.0);   // trees: 2-3 m trunk + 4-7 m crown
+  EXPECT_LE(big.hints.furniture_top_m, 10.0);
+}
+
 TEST(SimWorldCity, BadConfigIsInputError) {
   CityConfig config;
   config.size_m = 10;

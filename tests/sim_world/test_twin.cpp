@@ -1,5 +1,9 @@
-// Twin derivation: details gone, missing buildings absent from the twin only, added boxes in empty lots, whole-twin
-// offset, and a surface distance to the world of about noise_m.
+// Twin derivation: details gone, missing buildings absent from the twin only, added boxes in empty lots, shifted
+// buildings moved whole (nothing else changed), whole-twin offset, and a surface distance to the world of about
+// noise_m.
+#include <algorithm>
+#include <cmath>
+#include <map>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -78,6 +82,69 @@ TEST(SimWorldTwin, OffsetTranslatesTheWholeTwin) {
     ASSERT_LT((moved.mesh.p_W[i] - plain.mesh.p_W[i] - config.offset_m).norm(), 1e-9);
 }
 
+// The twin's vertices per building, in order (the world generator shares no vertex between buildings).
+std::map<int, std::vector<Eigen::Vector3d>> vertices_by_building(const TriMesh& m) {
+  std::map<int, std::vector<Eigen::Vector3d>> out;
+  for (std::size_t i = 0; i < m.num_triangles(); ++i)
+    for (int c = 0; c < 3; ++c) out[m.building_id[i]].push_back(m.p_W[m.triangles[i][c]]);
+  return out;
+}
+
+TEST(SimWorldTwin, ShiftedBuildingsMoveWholeByTheOffsetAndNothingElseChanges) {
+  TwinConfig config;  // noise 0.2: the shift must not disturb the noise draws either
+  config.missing_buildings = 2;
+  const Twin plain = derive_twin(world(), config, 5);
+  config.shifted_buildings = {3, 4.5};
+  const Twin moved = derive_twin(world(), config, 5);
+  ASSERT_EQ(moved.shifted_building_ids.size(), 3u);
+  ASSERT_EQ(moved.shifted_building_offsets_W.size(), 3u);
+  EXPECT_EQ(moved.missing_building_ids, plain.missing_building_ids);
+  const std::set<int> shifted(moved.shifted_building_ids.begin(), moved.shifted_building_ids.end());
+  EXPECT_EQ(shifted.size(), 3u);
+  EXPECT_FALSE(shifted.count(world().tallest_id));
+  for (int id : plain.missing_building_ids) EXPECT_FALSE(shifted.count(id)) << "building " << id;
+
+  ASSERT_EQ(moved.mesh.p_W.size(), plain.mesh.p_W.size());
+  EXPECT_EQ(moved.mesh.triangles, plain.mesh.triangles);
+  const auto before = vertices_by_building(plain.mesh), after = vertices_by_building(moved.mesh);
+  int moved_buildings = 0;
+  for (const auto& [id, points] : before) {
+    const auto& now = after.at(id);
+    const auto k = std::find(moved.shifted_building_ids.begin(), moved.shifted_building_ids.end(), id);
+    if (k == moved.shifted_building_ids.end()) {
+      EXPECT_EQ(now, points) << "building " << id << " changed";  // bit-exact
+      continue;
+    }
+    ++moved_buildings;
+    const Eigen::Vector3d shift = moved.shifted_building_offsets_W[k - moved.shifted_building_ids.begin()];
+    EXPECT_NEAR(shift.head<2>().norm(), 4.5, 1e-12);
+    EXPECT_EQ(shift.z(), 0.0);
+    for (std::size_t v = 0; v < points.size(); ++v) ASSERT_LT((now[v] - points[v] - shift).norm(), 1e-9);
+  }
+  EXPECT_EQ(moved_buildings, 3);
+}
+
+TEST(SimWorldTwin, ShiftedBuildingsAreDrawnBySeedAndAmongTheSeenFirst) {
+  TwinConfig config;
+  config.shifted_buildings = {2, 3.0};
+  const Twin a = derive_twin(world(), config, 5), b = derive_twin(world(), config, 5);
+  const Twin c = derive_twin(world(), config, 6);
+  EXPECT_EQ(a.mesh.p_W, b.mesh.p_W);
+  EXPECT_EQ(a.shifted_building_ids, b.shifted_building_ids);
+  EXPECT_EQ(a.shifted_building_offsets_W, b.shifted_building_offsets_W);
+  EXPECT_NE(a.shifted_building_offsets_W, c.shifted_building_offsets_W);
+  // Buildings the flight passes are changed first: here 4 seen ones for 2 missing + 2 shifted.
+  std::vector<int> seen;
+  for (const Building& x : world().buildings)
+    if (x.id != world().tallest_id && seen.size() < 4 && x.id % 3 == 1) seen.push_back(x.id);
+  config.missing_buildings = 2;
+  const Twin hit = derive_twin(world(), config, 5, seen);
+  std::vector<int> changed = hit.missing_building_ids;
+  changed.insert(changed.end(), hit.shifted_building_ids.begin(), hit.shifted_building_ids.end());
+  std::sort(changed.begin(), changed.end());
+  EXPECT_EQ(changed, seen);
+}
+
 TEST(SimWorldTwin, SurfaceDistanceIsAboutNoise) {
   TwinConfig config;
   config.noise_m = 0.0;
@@ -121,6 +188,26 @@ TEST(SimWorldTwin, OutOfRangeValuesNameTheKey) {
   config = TwinConfig{};
   config.added_buildings = 100000;
   EXPECT_THROW(derive_twin(world(), config, 1), InputError);
+  auto error = [](const TwinConfig& c) {
+    try {
+      derive_twin(world(), c, 1);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const int others = static_cast<int>(world().buildings.size()) - 1;  // all but the tallest
+  config = TwinConfig{};
+  config.missing_buildings = 2;
+  config.shifted_buildings = {others - 2, 1.0};
+  EXPECT_EQ(error(config), "(no error)");
+  config.shifted_buildings.count = others - 1;  // one more than remain besides the tallest and the missing
+  const std::string expected = "twin.shifted_buildings.count: must be in [0, " + std::to_string(others - 2) + "]";
+  EXPECT_EQ(error(config).rfind(expected, 0), 0u) << error(config);
+  config.shifted_buildings = {1, 20.5};
+  EXPECT_EQ(error(config).rfind("twin.shifted_buildings.offset_m: must be in [0, 20] m", 0), 0u) << error(config);
+  config.shifted_buildings = {1, std::nan("")};
+  EXPECT_EQ(error(config).rfind("twin.shifted_buildings.offset_m:", 0), 0u) << error(config);
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ void add_sim_command(CLI::App& app, int& exit_code) {
     bool quiet = false;
   };
   auto o = std::make_shared<Options>();
-  cmd->add_option("--scenario", o->scenario, "Built-in (tiny, city-loops, city-survey) or a scenario YAML file")
+  cmd->add_option("--scenario", o->scenario,
+                  "Built-in (tiny, city-loops, city-survey, city-long) or a scenario YAML file")
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Dataset folder to write")->required();
   cmd->add_option("--seed", o->seed, "Override the scenario's seed");

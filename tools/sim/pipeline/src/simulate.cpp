@@ -11,6 +11,7 @@
 #include "twinslam/core/error.hpp"
 #include "twinslam/sim/clock.hpp"
 #include "twinslam/sim/dataset_writer.hpp"
+#include "twinslam/sim/flight_surroundings.hpp"
 #include "twinslam/sim/scenario_io.hpp"
 #include "twinslam/sim/sim_camera.hpp"
 #include "twinslam/sim/world/city.hpp"
@@ -62,14 +63,19 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
     throw InputError("city.source: '" + scenario.city.source +
                      "' needs the twin-format loaders (not available yet); use 'procedural'");
   }
+  // The twin's changes hit the buildings a streets flight passes, so the flight is planned first.
   const City city = build_city(scenario.city, scenario.seed);
-  const Twin twin = derive_twin(city, scenario.twin, scenario.seed);
+  const std::vector<int> seen =
+      twin_change_candidates(scenario, city.hints, make_flight_trajectory(scenario, city.hints));
+  const Twin twin = derive_twin(city, scenario.twin, scenario.seed, seen);
   write_ply((dir / "twin/twin.ply").string(), twin.mesh, scenario.origin);
   summary.world_triangles = city.mesh.num_triangles();
   summary.twin_triangles = twin.mesh.num_triangles();
 
   // Trajectory, IMU, GNSS, ground truth, dataset.yaml.
-  const SensorData sensors = write_sensor_dataset(dir, scenario, city.hints, TwinReference{"twin/twin.ply", "ENU@origin"});
+  const TwinReference twin_ref{"twin/twin.ply", "ENU@origin", twin.missing_building_ids, twin.added_building_ids,
+                               twin.shifted_building_ids, twin.shifted_building_offsets_W};
+  const SensorData sensors = write_sensor_dataset(dir, scenario, city.hints, twin_ref);
   summary.imu = sensors.imu.size();
   summary.gnss = sensors.gnss.size();
   summary.duration_s = sensors.trajectory.duration();

@@ -113,16 +113,25 @@ void read_gnss(const YamlReader& r, const YAML::Node& n, GnssSimConfig& c) {
   r.read(n, "gnss.", "sigma_m", c.sigma_m);
 }
 
+void read_shifted_buildings(const YamlReader& r, const YAML::Node& n, ShiftedBuildings& c) {
+  r.expect_map(n, "twin.shifted_buildings");
+  if (!n) return;
+  r.check_keys(n, "twin.shifted_buildings.", {"count", "offset_m"});
+  r.read(n, "twin.shifted_buildings.", "count", c.count);
+  r.read(n, "twin.shifted_buildings.", "offset_m", c.offset_m);
+}
+
 void read_twin(const YamlReader& r, const YAML::Node& n, TwinConfig& c) {
   r.expect_map(n, "twin");
   if (!n) return;
-  r.check_keys(n, "twin.", {"noise_m", "missing_buildings", "added_buildings", "offset_m"});
+  r.check_keys(n, "twin.", {"noise_m", "missing_buildings", "added_buildings", "offset_m", "shifted_buildings"});
   r.read(n, "twin.", "noise_m", c.noise_m);
   r.read(n, "twin.", "missing_buildings", c.missing_buildings);
   r.read(n, "twin.", "added_buildings", c.added_buildings);
   std::array<double, 3> off{c.offset_m.x(), c.offset_m.y(), c.offset_m.z()};
   r.read(n, "twin.", "offset_m", off);
   c.offset_m = Eigen::Vector3d(off[0], off[1], off[2]);
+  read_shifted_buildings(r, n["shifted_buildings"], c.shifted_buildings);
 }
 
 }  // namespace

@@ -63,7 +63,9 @@ std::string scenario_to_yaml(const Scenario& s) {
     << "}\n";
   o << "twin: {noise_m: " << num(s.twin.noise_m) << ", missing_buildings: " << s.twin.missing_buildings
     << ", added_buildings: " << s.twin.added_buildings << ", offset_m: "
-    << list(std::array<double, 3>{s.twin.offset_m.x(), s.twin.offset_m.y(), s.twin.offset_m.z()}) << "}\n";
+    << list(std::array<double, 3>{s.twin.offset_m.x(), s.twin.offset_m.y(), s.twin.offset_m.z()})
+    << ", shifted_buildings: {count: " << s.twin.shifted_buildings.count
+    << ", offset_m: " << num(s.twin.shifted_buildings.offset_m) << "}}\n";
   return o.str();
 }
 

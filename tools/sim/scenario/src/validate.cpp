@@ -70,7 +70,7 @@ void validate_scenario_at(const Scenario& s, const std::string& file, const std:
   if (s.city.crs) c.require(s.city.crs->rfind("EPSG:", 0) == 0, "city.crs", "must look like EPSG:nnnn");
 
   const TrajectoryConfig& t = s.trajectory;
-  c.one_of(t.type, {"loops", "survey", "waypoints"}, "trajectory.type");
+  c.one_of(t.type, {"loops", "survey", "waypoints", "streets"}, "trajectory.type");
   c.in_range(t.duration_s, 10, 36000, "trajectory.duration_s");
   c.require(t.speed_mps > 0 && t.speed_mps <= 15, "trajectory.speed_mps", "must be > 0 and <= 15");
   c.require(t.altitude_m[0] >= 0.5 && t.altitude_m[1] >= t.altitude_m[0] && t.altitude_m[1] <= 500,
@@ -79,6 +79,8 @@ void validate_scenario_at(const Scenario& s, const std::string& file, const std:
   c.in_range(t.loop_rise_m, 0, 50, "trajectory.loop_rise_m");
   if (t.type == "waypoints")
     c.require(t.waypoints_W.size() >= 2, "trajectory.waypoints", "type waypoints needs at least 2 points");
+  if (t.type == "streets")
+    c.require(s.city.source == "procedural", "trajectory.type", "streets needs the procedural city's street grid");
   if (t.type == "survey" && s.city.source == "procedural")
     c.require(t.altitude_m[0] >= s.city.height_m[1] + 5, "trajectory.altitude_m",
               "a survey flies over the blocks: min must be >= city.height_m max + 5");
@@ -107,6 +109,11 @@ void validate_scenario_at(const Scenario& s, const std::string& file, const std:
   c.require(s.twin.added_buildings >= 0, "twin.added_buildings", "must be >= 0");
   c.require(s.twin.offset_m.allFinite() && s.twin.offset_m.norm() <= 1000, "twin.offset_m",
             "must be finite and shorter than 1000 m");
+  // The upper bound of the count depends on the city (buildings - 1 - missing): derive_twin checks it.
+  c.require(s.twin.shifted_buildings.count >= 0, "twin.shifted_buildings.count", "must be >= 0");
+  c.require(std::isfinite(s.twin.shifted_buildings.offset_m) && s.twin.shifted_buildings.offset_m >= 0 &&
+                s.twin.shifted_buildings.offset_m <= kMaxBuildingShift_m,
+            "twin.shifted_buildings.offset_m", "must be in [0, " + std::to_string(int(kMaxBuildingShift_m)) + "] m");
 }
 
 }  // namespace detail

@@ -33,6 +33,28 @@ void append_row(std::string& out, std::int64_t stamp, std::initializer_list<doub
   out += '\n';
 }
 
+void append_ids(std::string& out, const char* key, const std::vector<int>& ids, const char* comment) {
+  out += std::string("  ") + key + ": [";
+  for (std::size_t k = 0; k < ids.size(); ++k) out += (k ? ", " : "") + std::to_string(ids[k]);
+  out += "]   # " + std::string(comment) + "\n";
+}
+
+void append_twin(std::string& y, const TwinReference& twin) {
+  y += "twin:\n  path: \"" + twin.path + "\"\n  crs: \"" + twin.crs + "\"\n";
+  append_ids(y, "missing_building_ids", twin.missing_building_ids, "world buildings the twin lacks");
+  append_ids(y, "added_building_ids", twin.added_building_ids, "twin-only buildings");
+  append_ids(y, "shifted_building_ids", twin.shifted_building_ids, "buildings the twin has elsewhere");
+  y += "  shifted_building_offsets_m: [";
+  for (std::size_t k = 0; k < twin.shifted_building_offsets_W.size(); ++k) {
+    y += k ? ", [" : "[";
+    append_number(y, twin.shifted_building_offsets_W[k].x());
+    y += ", ";
+    append_number(y, twin.shifted_building_offsets_W[k].y());
+    y += "]";
+  }
+  y += "]   # their shift [east, north] in W, same order\n";
+}
+
 }  // namespace
 
 void write_imu(const fs::path& dir, const std::vector<ImuSample>& samples, const ImuSimConfig& config) {
@@ -109,7 +131,7 @@ void write_dataset_yaml(const fs::path& dir, const Scenario& scenario, const Twi
   append_number(y, scenario.origin.alt_m);
   y += "}   # W = ENU at this WGS84 point (GeographicLib LocalCartesian)\n";
   y += "stamp_epoch_ns: " + std::to_string(kEpochNs) + "   # stamp of simulation time 0\n";
-  y += "twin: {path: \"" + twin.path + "\", crs: \"" + twin.crs + "\"}\n";
+  append_twin(y, twin);
   y += "scenario:\n";
   const std::string echo = scenario_to_yaml(scenario);
   std::size_t start = 0;

@@ -25,6 +25,7 @@ FlightStats measure_flight(const FlightTrajectory& trajectory, double sample_dt)
     const double speed = s.v_W.norm();
     st.max_speed_mps = std::max(st.max_speed_mps, speed);
     st.max_accel_mps2 = std::max(st.max_accel_mps2, s.a_W.norm());
+    st.max_jerk_mps3 = std::max(st.max_jerk_mps3, s.j_W.norm());
     st.max_yaw_rate_dps = std::max(st.max_yaw_rate_dps, std::abs(s.yaw_rate_radps) * 180 / M_PI);
     st.max_body_rate_dps = std::max(st.max_body_rate_dps, s.w_B.norm() * 180 / M_PI);
     const double tilt = std::acos(std::clamp(s.R_WB(2, 2), -1.0, 1.0)) * 180 / M_PI;
@@ -47,6 +48,7 @@ void check_flight_limits(const FlightStats& st, const FlightLimits& l, const std
   if (st.max_speed_mps > l.max_speed_mps) fail("trajectory.speed_mps", "speed [m/s]", st.max_speed_mps, l.max_speed_mps);
   if (st.max_accel_mps2 > l.max_accel_mps2)
     fail("trajectory.type", "acceleration [m/s^2]", st.max_accel_mps2, l.max_accel_mps2);
+  if (st.max_jerk_mps3 > l.max_jerk_mps3) fail("trajectory.type", "jerk [m/s^3]", st.max_jerk_mps3, l.max_jerk_mps3);
   if (st.max_yaw_rate_dps > l.max_yaw_rate_dps)
     fail("trajectory.type", "yaw rate [deg/s]", st.max_yaw_rate_dps, l.max_yaw_rate_dps);
   if (st.max_tilt_deg > l.max_tilt_deg) fail("trajectory.type", "tilt [deg]", st.max_tilt_deg, l.max_tilt_deg);

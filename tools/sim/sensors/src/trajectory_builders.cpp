@@ -1,11 +1,12 @@
-// loops | survey | waypoints: a planar path (path.hpp) sampled at constant spacing into the control points of a
-// quintic B-spline that starts and ends at rest (five equal control points at each end make all derivatives up to
-// the fourth vanish there).
+// loops | survey | waypoints | streets: a planar path (path.hpp) sampled at constant spacing into the control points
+// of a quintic B-spline that starts and ends at rest (five equal control points at each end make all derivatives up
+// to the fourth vanish there).
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "path.hpp"
+#include "street_route.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/sim/flight_limits.hpp"
 #include "twinslam/sim/flight_trajectory.hpp"
@@ -103,6 +104,14 @@ FlightTrajectory make_waypoints(const Scenario& sc) {
   return sample_path(path, path.length(), 0.0, sc.trajectory, sc.name);
 }
 
+// Along the street grid, camera forward: the route (street_route.hpp) with its corners rounded to half a street.
+FlightTrajectory make_streets(const Scenario& sc, const SceneHints& hints) {
+  const double length = cruise_length(sc.trajectory);
+  const auto corners = detail::plan_street_route(hints, sc.trajectory, length, sc.seed, sc.name);
+  const PlanarPath path = PlanarPath::filleted_polyline(corners, detail::kStreetFillet_m);
+  return sample_path(path, std::min(length, path.length()), 0.0, sc.trajectory, sc.name);
+}
+
 }  // namespace
 
 LoopsGeometry loops_geometry(const Scenario& sc, const SceneHints& hints) {
@@ -125,9 +134,10 @@ LoopsGeometry loops_geometry(const Scenario& sc, const SceneHints& hints) {
 
 FlightTrajectory make_flight_trajectory(const Scenario& scenario, const SceneHints& hints) {
   const std::string& type = scenario.trajectory.type;
-  FlightTrajectory trajectory = type == "loops"    ? make_loops(scenario, hints)
-                                : type == "survey" ? make_survey(scenario, hints)
-                                                   : make_waypoints(scenario);
+  FlightTrajectory trajectory = type == "loops"     ? make_loops(scenario, hints)
+                                : type == "survey"  ? make_survey(scenario, hints)
+                                : type == "streets" ? make_streets(scenario, hints)
+                                                    : make_waypoints(scenario);
   check_flight_limits(measure_flight(trajectory), flight_limits(scenario.trajectory), scenario.name);
   return trajectory;
 }

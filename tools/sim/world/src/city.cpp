@@ -99,10 +99,26 @@ class CityBuilder {
     h.tall_building_height_m = tower.height_m;
     h.ground_z_m = 0;
     h.extent_W = {-half, -half, half, half};
+    add_street_hints(n, centre, pitch);
     return std::move(city_);
   }
 
  private:
+  // What a `streets` flight plans with: the street centrelines between the n x n blocks, every footprint, the parks
+  // and how high the street furniture reaches. Read from what was built; draws nothing.
+  void add_street_hints(int n, int centre, double pitch) {
+    SceneHints& h = city_.hints;
+    for (int k = 0; k + 1 < n; ++k) h.streets.east_m.push_back((k - centre + 0.5) * pitch);
+    h.streets.north_m = h.streets.east_m;
+    h.streets.width_m = layout_.street_width_m;
+    for (const Building& b : city_.buildings) h.buildings.push_back({b.id, b.rects_W, b.height_m, b.top_m});
+    const TriMesh& m = city_.mesh;
+    for (std::size_t i = 0; i < m.num_triangles(); ++i) {
+      if (m.building_id[i] != kNoBuilding || m.kind[i] != SurfaceKind::kDetail) continue;
+      for (int c = 0; c < 3; ++c) h.furniture_top_m = std::max(h.furniture_top_m, m.p_W[m.triangles[i][c]].z());
+    }
+  }
+
   void add_ground(double half) {
     const double s = layout_.ground_patch_m;
     for (double x = -half; x < half - 1e-9; x += s) {
@@ -144,6 +160,7 @@ class CityBuilder {
         detail::add_tree(&city_.mesh, {rng_.uniform(block[0] + 3, block[2] - 3), rng_.uniform(block[1] + 3, block[3] - 3)},
                          &rng_);
       city_.empty_lots_W.push_back(block);
+      city_.hints.open_areas_W.push_back(block);
       return;
     }
     std::vector<Eigen::Vector4d> lots;

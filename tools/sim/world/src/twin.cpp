@@ -37,6 +37,15 @@ void validate(const City& world, const TwinConfig& c) {
     throw InputError("twin.added_buildings: this city has " + std::to_string(max_added) +
                      " empty lots, got " + std::to_string(c.added_buildings));
   if (!c.offset_m.allFinite()) throw InputError("twin.offset_m: must be finite");
+  const int max_shifted = max_missing - c.missing_buildings;
+  if (c.shifted_buildings.count < 0 || c.shifted_buildings.count > max_shifted)
+    throw InputError("twin.shifted_buildings.count: must be in [0, " + std::to_string(max_shifted) +
+                     "] (buildings besides the tallest and the missing ones), got " +
+                     std::to_string(c.shifted_buildings.count));
+  const double d = c.shifted_buildings.offset_m;
+  if (!std::isfinite(d) || d < 0 || d > kMaxBuildingShift_m)
+    throw InputError("twin.shifted_buildings.offset_m: must be in [0, " + std::to_string(int(kMaxBuildingShift_m)) +
+                     "] m, got " + std::to_string(d));
 }
 
 // Seeded Fisher-Yates shuffle with our own Rng (std::shuffle's use of the engine is library-specific).
@@ -45,27 +54,44 @@ void shuffle(std::vector<T>* v, Rng* rng) {
   for (int i = static_cast<int>(v->size()) - 1; i > 0; --i) std::swap((*v)[i], (*v)[rng->integer(i + 1)]);
 }
 
-}  // namespace
+// The world's buildings except the tallest and `excluded`, in a seeded order: the seen ones (shuffled) before the
+// others (shuffled), so the first N of them hit what the flight sees while there are enough. With no seen ids this
+// is exactly one shuffle of all candidates (the draws of the twins made before seen ids existed).
+std::vector<int> candidate_order(const City& world, const std::vector<int>& seen_ids, const std::set<int>& excluded,
+                                 Rng* rng) {
+  const std::set<int> seen(seen_ids.begin(), seen_ids.end());
+  std::vector<int> first, rest;
+  for (const auto& b : world.buildings) {
+    if (b.id == world.tallest_id || excluded.count(b.id)) continue;
+    (seen.count(b.id) ? first : rest).push_back(b.id);
+  }
+  shuffle(&first, rng);
+  shuffle(&rest, rng);
+  first.insert(first.end(), rest.begin(), rest.end());
+  return first;
+}
 
-Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed) {
-  validate(world, config);
-  Rng rng(hash64(seed ^ 0x7417ULL));  // a stream of its own: the twin must not change when the city code draws more
-  Twin twin;
+// Horizontal shift [m, W] of each shifted building, from a stream of its own so that twins without shifted
+// buildings keep their bytes.
+std::map<int, Eigen::Vector3d> choose_shifted(const City& world, const TwinConfig& config, std::uint64_t seed,
+                                              const std::vector<int>& seen_ids, const std::set<int>& missing) {
+  std::map<int, Eigen::Vector3d> shift_W;
+  if (config.shifted_buildings.count == 0) return shift_W;
+  Rng rng(hash64(seed ^ 0x5A1F7EDULL));
+  std::vector<int> order = candidate_order(world, seen_ids, missing, &rng);
+  order.resize(static_cast<std::size_t>(config.shifted_buildings.count));
+  std::sort(order.begin(), order.end());
+  for (const int id : order) {
+    const double angle = 2 * M_PI * rng.uniform();  // [rad] from east, counter-clockwise
+    shift_W[id] = config.shifted_buildings.offset_m * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
+  }
+  return shift_W;
+}
 
-  std::vector<int> candidates;
-  for (const auto& b : world.buildings)
-    if (b.id != world.tallest_id) candidates.push_back(b.id);
-  shuffle(&candidates, &rng);
-  twin.missing_building_ids.assign(candidates.begin(), candidates.begin() + config.missing_buildings);
-  std::sort(twin.missing_building_ids.begin(), twin.missing_building_ids.end());
-  const std::set<int> missing(twin.missing_building_ids.begin(), twin.missing_building_ids.end());
-
-  const TriMesh& w = world.mesh;
-  std::vector<int> kept;
-  for (std::size_t i = 0; i < w.num_triangles(); ++i)
-    if (w.kind[i] != SurfaceKind::kDetail && !missing.count(w.building_id[i])) kept.push_back(static_cast<int>(i));
-
-  // Faces of the kept triangles.
+// The kept world triangles, every planar face moved along its normal by its own N(0, noise_m^2) offset (each face
+// gets its own copy of its vertices), the whole twin by config.offset_m and shifted buildings by their shift.
+void copy_perturbed(const TriMesh& w, const std::vector<int>& kept, const TwinConfig& config,
+                    const std::map<int, Eigen::Vector3d>& shift_W, Rng* rng, TriMesh* out) {
   Faces faces(kept.size());
   std::vector<std::vector<int>> users(w.p_W.size());
   for (std::size_t k = 0; k < kept.size(); ++k)
@@ -76,38 +102,69 @@ Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed
       if (w.kind[i] == w.kind[j] && w.normal(i).dot(w.normal(j)) > 0.999) faces.unite(list[0], list[a]);
     }
 
-  // One offset per face along its normal; each face gets its own copy of its vertices.
   std::vector<double> offset(kept.size(), std::nan(""));
   std::map<std::pair<int, int>, int> vertex_of;
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const int root = faces.find(static_cast<int>(k));
-    if (std::isnan(offset[root])) offset[root] = config.noise_m * rng.normal();
+    if (std::isnan(offset[root])) offset[root] = config.noise_m * rng->normal();
     const int tri = kept[k];
     const Eigen::Vector3d n = w.normal(tri);
+    const auto shift = shift_W.find(w.building_id[tri]);
     Eigen::Vector3i t;
     for (int c = 0; c < 3; ++c) {
       const int v = w.triangles[tri][c];
-      auto [it, inserted] = vertex_of.try_emplace({root, v}, static_cast<int>(twin.mesh.p_W.size()));
-      if (inserted) twin.mesh.p_W.push_back(w.p_W[v] + offset[root] * n + config.offset_m);
+      auto [it, inserted] = vertex_of.try_emplace({root, v}, static_cast<int>(out->p_W.size()));
+      if (inserted) {
+        Eigen::Vector3d p = w.p_W[v] + offset[root] * n + config.offset_m;
+        if (shift != shift_W.end()) p += shift->second;  // only then: adding a zero would turn -0.0 into +0.0
+        out->p_W.push_back(p);
+      }
       t[c] = it->second;
     }
-    twin.mesh.triangles.push_back(t);
-    twin.mesh.building_id.push_back(w.building_id[tri]);
-    twin.mesh.kind.push_back(w.kind[tri]);
+    out->triangles.push_back(t);
+    out->building_id.push_back(w.building_id[tri]);
+    out->kind.push_back(w.kind[tri]);
   }
+}
 
-  // Twin-only buildings: plain boxes in empty lots.
+// Twin-only buildings: plain boxes in seeded empty lots.
+void add_twin_only_buildings(const City& world, const TwinConfig& config, Rng* rng, Twin* twin) {
   std::vector<int> lots(world.empty_lots_W.size());
   std::iota(lots.begin(), lots.end(), 0);
-  shuffle(&lots, &rng);
+  shuffle(&lots, rng);
   for (int k = 0; k < config.added_buildings; ++k) {
     const Eigen::Vector4d& lot = world.empty_lots_W[lots[k]];
     const int id = static_cast<int>(world.buildings.size()) + k;
-    const double h = world.layout.floor_height_m * (3 + rng.integer(5));
+    const double h = world.layout.floor_height_m * (3 + rng->integer(5));
     const Eigen::Vector3d lo(lot[0] + 3, lot[1] + 3, 0), hi(lot[2] - 3, lot[3] - 3, h);
-    add_box(&twin.mesh, lo + config.offset_m, hi + config.offset_m, SurfaceKind::kFacade, SurfaceKind::kRoof, id);
-    twin.added_building_ids.push_back(id);
+    add_box(&twin->mesh, lo + config.offset_m, hi + config.offset_m, SurfaceKind::kFacade, SurfaceKind::kRoof, id);
+    twin->added_building_ids.push_back(id);
   }
+}
+
+}  // namespace
+
+Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed, const std::vector<int>& seen_ids) {
+  validate(world, config);
+  Rng rng(hash64(seed ^ 0x7417ULL));  // a stream of its own: the twin must not change when the city code draws more
+  Twin twin;
+
+  const std::vector<int> candidates = candidate_order(world, seen_ids, {}, &rng);
+  twin.missing_building_ids.assign(candidates.begin(), candidates.begin() + config.missing_buildings);
+  std::sort(twin.missing_building_ids.begin(), twin.missing_building_ids.end());
+  const std::set<int> missing(twin.missing_building_ids.begin(), twin.missing_building_ids.end());
+  const std::map<int, Eigen::Vector3d> shift_W = choose_shifted(world, config, seed, seen_ids, missing);
+  for (const auto& [id, shift] : shift_W) {
+    twin.shifted_building_ids.push_back(id);
+    twin.shifted_building_offsets_W.push_back(shift);
+  }
+
+  std::vector<int> kept;
+  for (std::size_t i = 0; i < world.mesh.num_triangles(); ++i)
+    if (world.mesh.kind[i] != SurfaceKind::kDetail && !missing.count(world.mesh.building_id[i]))
+      kept.push_back(static_cast<int>(i));
+  copy_perturbed(world.mesh, kept, config, shift_W, &rng, &twin.mesh);
+  add_twin_only_buildings(world, config, &rng, &twin);
   return twin;
 }
 

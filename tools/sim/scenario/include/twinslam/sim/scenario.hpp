@@ -1,7 +1,7 @@
 #pragma once
 // The simulator's scenario: every key of the scenario file in docs/CONTRACTS.md, with defaults and units.
-// Parsing, validation and the built-in scenarios (tiny, city-loops, city-survey): scenario_io.hpp. Every other
-// simulator module takes its own part of this struct.
+// Parsing, validation and the built-in scenarios (tiny, city-loops, city-survey, city-long): scenario_io.hpp. Every
+// other simulator module takes its own part of this struct.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -28,7 +28,7 @@ struct CityConfig {
 };
 
 struct TrajectoryConfig {
-  std::string type = "loops";                 // loops | survey | waypoints
+  std::string type = "loops";                 // loops | survey | waypoints | streets
   double duration_s = 300;                    // [s]
   double speed_mps = 2.0;                     // cruise speed [m/s]
   std::array<double, 2> altitude_m{2, 17};    // min/max flight altitude above ground [m]
@@ -62,11 +62,20 @@ struct GnssSimConfig {
   double sigma_m = 1.5;                       // gaussian: horizontal standard deviation [m]
 };
 
+// Whole buildings the twin has in the wrong place (a mapping error): `count` of them moved horizontally by `offset_m`
+// in a seeded random direction each. More than a street width (12 m) would make it a different city, not an error.
+inline constexpr double kMaxBuildingShift_m = 20.0;
+struct ShiftedBuildings {
+  int count = 0;
+  double offset_m = 0;                        // [m], horizontal
+};
+
 struct TwinConfig {
   double noise_m = 0.2;                       // perturbation of twin surfaces [m]
   int missing_buildings = 0;                  // buildings removed from the twin (environment change)
   int added_buildings = 0;                    // buildings in the twin that do not exist
   Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();  // georeferencing error of the twin [m, W]
+  ShiftedBuildings shifted_buildings;         // buildings misplaced in the twin
 };
 
 struct Scenario {
@@ -81,6 +90,22 @@ struct Scenario {
   TwinConfig twin;
 };
 
+// Street grid of a procedural city: the centrelines of the streets between blocks (not the outer ring at the city's
+// edge, which has buildings on one side only). Empty when the world has no grid.
+struct StreetGrid {
+  std::vector<double> east_m;                  // E of the north-south streets, increasing [m]
+  std::vector<double> north_m;                 // N of the east-west streets, increasing [m]
+  double width_m = 0;                          // kerb to kerb [m]
+};
+
+// A building as the trajectory generator sees it: its footprint and how high it reaches.
+struct BuildingHint {
+  int id = 0;
+  std::vector<Eigen::Vector4d> rects_W;        // footprint as union of rectangles [min e, min n, max e, max n] [m]
+  double height_m = 0;                         // eave height above ground [m]
+  double top_m = 0;                            // highest point incl. roof structures [m]
+};
+
 // What the trajectory generator needs to know about the world (filled from the built city).
 struct SceneHints {
   Eigen::Vector2d tall_building_center_W = Eigen::Vector2d::Zero();  // [m, E N]
@@ -91,6 +116,11 @@ struct SceneHints {
   double clear_radius_m = 0;
   double ground_z_m = 0;                       // [m, U]
   std::array<double, 4> extent_W{-300, -300, 300, 300};  // min e, min n, max e, max n [m]
+  // For `streets` flights (all empty/0 when the world does not say):
+  StreetGrid streets;
+  std::vector<BuildingHint> buildings;
+  std::vector<Eigen::Vector4d> open_areas_W;   // whole blocks without buildings (parks) [min e, min n, max e, max n]
+  double furniture_top_m = 0;                  // highest tree or parked car above ground [m]
 };
 
 }  // namespace twinslam::sim

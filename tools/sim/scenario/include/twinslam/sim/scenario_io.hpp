@@ -9,7 +9,7 @@
 
 namespace twinslam::sim {
 
-// Names accepted by builtin_scenario(): tiny, city-loops, city-survey.
+// Names accepted by builtin_scenario(): tiny, city-loops, city-survey, city-long.
 std::vector<std::string> builtin_scenario_names();
 
 // A built-in scenario by name; UsageError for an unknown name (the message lists the known ones).
@@ -30,8 +30,9 @@ void validate_scenario(const Scenario& scenario, const std::string& file);
 // gives back s. dataset.yaml echoes it.
 std::string scenario_to_yaml(const Scenario& scenario);
 
-// Camera extrinsics when the file gives none. loops/waypoints: optical axis = body x (forward, horizontal; the loops
-// yaw turns body x 45 deg toward the building); survey: optical axis pitched 45 deg down from body x (down-forward).
+// Camera extrinsics when the file gives none. loops/waypoints/streets: optical axis = body x (forward, horizontal;
+// the loops yaw turns body x 45 deg toward the building); survey: optical axis pitched 45 deg down from body x
+// (down-forward).
 // Camera 10 cm ahead of and 5 cm below the IMU.
 Eigen::Isometry3d default_T_BC(const std::string& trajectory_type);
 

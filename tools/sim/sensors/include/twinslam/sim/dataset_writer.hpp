@@ -29,9 +29,14 @@ void write_groundtruth(const std::filesystem::path& dir, const FlightTrajectory&
 struct TwinReference {
   std::string path = "twin/";          // relative to DIR
   std::string crs = "ENU@origin";      // placeholder until the twin writer knows the real CRS
+  // Where the twin is wrong (world building ids; empty when none or unknown), for evaluating registration there.
+  std::vector<int> missing_building_ids = {};
+  std::vector<int> added_building_ids = {};
+  std::vector<int> shifted_building_ids = {};
+  std::vector<Eigen::Vector3d> shifted_building_offsets_W = {};  // their shift [m, W], same order
 };
 
-// DIR/dataset.yaml: format version, origin, twin path and CRS, T_BC, and the scenario echo (scenario_to_yaml).
+// DIR/dataset.yaml: format version, origin, twin path, CRS and changes, and the scenario echo (scenario_to_yaml).
 void write_dataset_yaml(const std::filesystem::path& dir, const Scenario& scenario, const TwinReference& twin);
 
 // Everything above in one call (what `twinslam sim` needs besides the world and the camera): the trajectory from the

@@ -10,6 +10,7 @@ namespace twinslam::sim {
 struct FlightLimits {
   double max_speed_mps = 2.5;       // [m/s] (flight_limits(): 1.25 x speed_mps + 0.5)
   double max_accel_mps2 = 3.0;      // norm of the acceleration in W [m/s^2]
+  double max_jerk_mps3 = 10.0;      // norm of the jerk in W [m/s^3]: tilt rate ~ jerk / g, so about 60 deg/s
   double max_yaw_rate_dps = 45.0;   // [deg/s]
   double max_tilt_deg = 25.0;       // angle between body z and up [deg]
 };
@@ -18,6 +19,7 @@ FlightLimits flight_limits(const TrajectoryConfig& config);
 
 struct FlightStats {
   double max_speed_mps = 0, max_accel_mps2 = 0, max_yaw_rate_dps = 0, max_tilt_deg = 0;
+  double max_jerk_mps3 = 0;         // norm of the jerk in W [m/s^3]
   double max_body_rate_dps = 0;     // norm of w_B [deg/s]
   double length_m = 0;              // path length [m]
   double min_up_m = 0, max_up_m = 0;  // altitude range of p_W.z [m]

@@ -48,10 +48,20 @@ class FlightTrajectory {
   QuinticBSpline spline_;
 };
 
-// The scenario's trajectory (loops | survey | waypoints), lasting exactly trajectory.duration_s, starting at rest and
-// moving within the first second, with a small zig-zag in the first seconds that excites all IMU axes for
+// The scenario's trajectory (loops | survey | waypoints | streets), lasting exactly trajectory.duration_s, starting at
+// rest and moving within the first second, with a small zig-zag in the first seconds that excites all IMU axes for
 // visual-inertial initialization. Throws InputError naming the key when the scenario cannot be flown within
 // flight_limits() (e.g. waypoints too far for duration_s at speed_mps).
+//
+// `streets` plans on hints.streets (a procedural city's grid), camera forward like `waypoints`: a route that never
+// passes an intersection twice, corners rounded to half a street (6 m), and on it
+// - a straight stretch of 3 blocks along the street side most lined with facades at least 5 m taller than the
+//   drone, flown at altitude_m[0] and 6 m from the nearest footprint of that row (one wall dominating the view);
+// - a diagonal across a park block (hints.open_areas_W): an open square, entered and left by 45 deg turns;
+// - elsewhere a slow wave through altitude_m (one climb and descent per 600 m), altitude_m[0] >= the street trees'
+//   top + 4 m (hints.furniture_top_m), else InputError.
+// The skeleton (start, stretch, shortest connection, park, straight tail) grows block by block, at random from the
+// seed, until it is as long as the cruise; the stretch comes after about 12 % and the park after about 55 % of it.
 FlightTrajectory make_flight_trajectory(const Scenario& scenario, const SceneHints& hints);
 
 // Where a `loops` flight goes, so the world can keep that ring free of other buildings: counter-clockwise circles

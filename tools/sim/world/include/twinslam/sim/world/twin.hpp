@@ -5,7 +5,12 @@
 //   its own N(0, noise_m^2) offset — a modelling/survey error per surface, RMS = noise_m;
 // - `missing_buildings`: N buildings (never the tallest) absent from the twin only (demolished since the survey);
 // - `added_buildings`: N boxes in empty lots that exist only in the twin (planned or since-built);
-// - `offset_m`: the whole twin translated (a georeferencing error).
+// - `offset_m`: the whole twin translated (a georeferencing error);
+// - `shifted_buildings`: N buildings (never the tallest, never a missing one) moved horizontally by offset_m in a
+//   seeded random direction each (a building mapped in the wrong place); drawn from their own random stream, so twins
+//   without shifted buildings are unchanged by them.
+// Missing and shifted buildings are drawn first among `seen_ids` (the buildings the flight passes, e.g. along a
+// `streets` route), then among the others; with no seen ids the draw is over all buildings.
 #include <cstdint>
 #include <vector>
 
@@ -18,10 +23,14 @@ struct Twin {
   TriMesh mesh;                          // [m, W], translated by offset_m
   std::vector<int> missing_building_ids; // world buildings absent from the twin
   std::vector<int> added_building_ids;   // twin-only buildings (ids continue after the world's)
+  std::vector<int> shifted_building_ids; // world buildings misplaced in the twin, increasing
+  std::vector<Eigen::Vector3d> shifted_building_offsets_W;  // their shift [m, W] (z = 0), same order
 };
 
 // Throws InputError naming the twin.* key when a value is out of range (negative or non-finite noise, more missing
-// buildings than there are besides the tallest, more added buildings than empty lots, non-finite offset).
-Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed);
+// buildings than there are besides the tallest, more added buildings than empty lots, non-finite offset, more
+// shifted buildings than remain besides the tallest and the missing ones, a shift outside [0, 20] m).
+Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed,
+                 const std::vector<int>& seen_ids = {});
 
 }  // namespace twinslam::sim

@@ -1,0 +1,22 @@
+#pragma once
+// Which buildings a flight passes: the twin's changes (missing and shifted buildings) are drawn among them first, so
+// that a flight through the streets actually meets the places where the twin is wrong.
+#include <vector>
+
+#include "twinslam/sim/flight_trajectory.hpp"
+
+namespace twinslam::sim {
+
+inline constexpr double kSeenWithin_m = 15.0;  // a building this close to the path lines the street flown [m]
+
+// Ids (increasing) of the buildings whose footprint comes within within_m [m] horizontally of the flight, sampled
+// every 0.5 s.
+std::vector<int> buildings_along_flight(const FlightTrajectory& trajectory, const std::vector<BuildingHint>& buildings,
+                                        double within_m);
+
+// The seen_ids for derive_twin: for `streets` flights the buildings within kSeenWithin_m of the path; for the other
+// types none, so their twins draw over all buildings exactly as before streets flights existed.
+std::vector<int> twin_change_candidates(const Scenario& scenario, const SceneHints& hints,
+                                        const FlightTrajectory& trajectory);
+
+}  // namespace twinslam::sim
