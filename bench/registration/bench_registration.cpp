@@ -3,8 +3,9 @@
 // For each city (the simulator's procedural city, scenario city-loops, side 1 km and 5 km): the twin store is built
 // once (untimed); keyframes along the flight get 150-1500 landmarks sampled on the twin's surfaces facing the camera
 // within 50 m (facades weighted 3x over ground and roofs; no occlusion test), 0.1 m noise, 10 % outliers, seen through
-// a drift of up to 0.5 m and 1 deg. A fresh child process (`--serve DIR ours`) then runs, per keyframe: the index
-// update (tiles entering the 150 m window are decoded from the store and indexed, leaving ones dropped), then
+// a drift of up to 0.5 m and 1 deg. A fresh child process (`--serve DIR ours`) then runs, per keyframe, the service's
+// path: tiles arrive as the tiles service streams them (250 m window) into a WindowedTwin, whose update builds the
+// tiles entering the 150 m window and one tile of its prefetch ring and drops those leaving; then
 // register_cloud (preprocess, ICP, information). A second child (`--serve DIR pcl N`) runs the paper code's recipe on
 // N of the same keyframes: +-350 m crop, KD-tree rebuilt per call, PCL IterativeClosestPointWithNormals, 25
 // iterations, 8 m max correspondence distance. A third (`--serve DIR probe N`) compares the index's structure with a

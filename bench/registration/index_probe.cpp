@@ -1,6 +1,6 @@
 // Why per-tile KD-trees: the measurement behind the twin index's design (services/registration/README.md). On the
 // 150 m window of tiles around each benchmark keyframe, the same queries (the keyframe's landmarks, radius 1 m: the
-// gate after a few ICP iterations) against TwinTileIndex (PCL KdTreeFLANN per tile) and against a voxel hash of 1 m
+// gate after a few ICP iterations) against TwinTileIndex (a FLANN KD-tree per tile) and against a voxel hash of 1 m
 // cells (KISS-ICP's structure: a point's 27 neighbouring cells are scanned, exact for radius <= the cell size).
 #include <chrono>
 #include <cmath>
