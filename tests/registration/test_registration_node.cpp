@@ -54,7 +54,9 @@ TEST(WindowedTwin, IndexesOnlyTheTilesNearAVehicleAndMatchesAFreshIndex) {
   for (const auto& q : test::sample_noisy(test::city_surfaces(), 200, 0.3, 5)) {
     const auto a = twin.index().nearest(q, 2.0), b = fresh.nearest(q, 2.0);
     ASSERT_EQ(a.has_value(), b.has_value());
-    if (a) EXPECT_NEAR(a->distance_m, b->distance_m, 1e-4);  // Draco's 20-bit positions: < 0.1 mm
+    if (a) {
+      EXPECT_NEAR(a->distance_m, b->distance_m, 1e-4);  // Draco's 20-bit positions: < 0.1 mm
+    }
   }
   // The vehicle moves away: its old tiles leave the index, the new ones come in.
   const auto moved = twin.update("uav0", test::kCentre + Eigen::Vector3d(40, 40, 5));
@@ -105,7 +107,9 @@ TEST(WindowedTwin, PrefetchesTheRingAroundTheWindowAFewTilesPerUpdateNearestFirs
   for (const auto& q : test::sample_noisy(test::city_surfaces(), 200, 0.3, 5)) {
     const auto a = twin.index().nearest(q, 2.0), b = fresh.nearest(q, 2.0);
     ASSERT_EQ(a.has_value(), b.has_value());
-    if (a) EXPECT_NEAR(a->distance_m, b->distance_m, 1e-4);
+    if (a) {
+      EXPECT_NEAR(a->distance_m, b->distance_m, 1e-4);
+    }
   }
 }
 

@@ -143,7 +143,9 @@ void add_bench_command(CLI::App& app, int& exit_code) {
     table << "\n| ATE_R [deg] |";
     for (const auto& r : results) table << ' ' << cell(r.ate.rot.rmse, "%.3f") << " |";
     table << "\n| ATE_p [% of path] |";
-    for (const auto& r : results) table << ' ' << cell(100.0 * r.ate.pos.rmse / std::max(r.length_m, 1e-9), "%.3f") << " |";
+    for (const auto& r : results) {
+      table << ' ' << cell(100.0 * r.ate.pos.rmse / std::max(r.length_m, 1e-9), "%.3f") << " |";
+    }
     table << "\n| error in W 10 s after start [m / deg] |";
     for (const auto& m : done) {
       const auto it = starts.find(m);

@@ -42,8 +42,8 @@ class Nearest final : public flann::ResultSet<float> {
 
 }  // namespace
 
-// Leaves of at most 16 points (10, FLANN's default, and 4 were no faster in bench_registration, 32 no better); reorder: the tree keeps its points in leaf order (cache-friendly
-// leaf scans, one more copy of 12 B per point).
+// Leaves of at most 16 points (10, FLANN's default, and 4 were no faster in bench_registration, 32 no better);
+// reorder: the tree keeps its points in leaf order (cache-friendly leaf scans, one more copy of 12 B per point).
 struct KdTree3f::Tree {
   explicit Tree(std::vector<float>& xyz)
       : index(flann::Matrix<float>(xyz.data(), xyz.size() / 3, 3), flann::KDTreeSingleIndexParams(16, true)) {

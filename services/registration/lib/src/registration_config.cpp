@@ -107,7 +107,8 @@ void RegistrationConfig::validate(const std::string& s) const {
   const auto nonneg = [](double v) { return std::isfinite(v) && v >= 0.0; };
   check(nonneg(min_quality) && min_quality <= 1.0, s, "min_quality", "must lie in [0, 1]", min_quality);
   check(nonneg(voxel_size_m), s, "voxel_size_m", "must be >= 0 m", voxel_size_m);
-  check(outlier_neighbors >= 0 && outlier_neighbors <= 32, s, "outlier_neighbors", "must be in [0, 32]", outlier_neighbors);
+  check(outlier_neighbors >= 0 && outlier_neighbors <= 32, s, "outlier_neighbors", "must be in [0, 32]",
+        outlier_neighbors);
   check(pos(outlier_stddev), s, "outlier_stddev", "must be > 0", outlier_stddev);
   check(min_points >= 6, s, "min_points", "must be >= 6 (6 unknowns)", min_points);
   check(max_iterations >= 1, s, "max_iterations", "must be >= 1", max_iterations);

@@ -1,7 +1,7 @@
 #pragma once
 // Nearest-twin-point lookup for ICP (paper eq. 2: b_j and its normal n_j), built incrementally from the twin's tiles.
-// Each tile gets its own KD-tree (PCL KdTreeFLANN, hidden in twin_index.cpp) when it arrives and loses it when it
-// leaves: the tiles service streams a 150 m window around the vehicle, so a keyframe's query touches a constant
+// Each tile gets its own KD-tree (FLANN's, src/kdtree.hpp, hidden in twin_index.cpp) when it arrives and loses it
+// when it leaves: registration indexes a 150 m window (and a prefetch ring) around the vehicle, so a keyframe's query touches a constant
 // number of trees and nothing is rebuilt per registration (the paper code rebuilt a KD-tree over a +-350 m crop per
 // call; bench_registration measures both). Why per-tile trees and not a voxel hash: services/registration/README.md.
 // Tiles are squares of `tile_size_m` on the store's grid (tile (ix, iy) covers e in [ix s, (ix+1) s), n likewise); a
