@@ -26,6 +26,18 @@ std::pair<double, bool> reprojection_error_px(WindowState& s, const ResidualTerm
           factor.in_front(anchor->pose.data(), frame->pose.data(), lm.rho)};
 }
 
+// Largest angle [deg] between the anchor keyframe's ray to landmark `id` and another observer's, both in L.
+double current_parallax_deg(const Eigen::Isometry3d& T_BC, const WindowFrame& anchor,
+                            const std::vector<const WindowFrame*>& observers, std::int64_t id) {
+  const Eigen::Vector3d d_a = (anchor.T_LB().linear() * T_BC.linear() * anchor.bearings.at(id)).normalized();
+  double cos_min = 1.0;
+  for (const WindowFrame* f : observers) {
+    const Eigen::Vector3d d = (f->T_LB().linear() * T_BC.linear() * f->bearings.at(id)).normalized();
+    cos_min = std::min(cos_min, d_a.dot(d));
+  }
+  return std::acos(std::clamp(cos_min, -1.0, 1.0)) * 180.0 / M_PI;
+}
+
 }  // namespace
 
 StatePriorSigmas static_init_prior_sigmas(const SlidingWindowConfig& c) {
@@ -156,19 +168,22 @@ std::vector<LandmarkEstimate> window_landmarks(const WindowState& s) {
   const double threshold = s.config.outlier_threshold_px;
   for (const auto& [id, lm] : s.landmarks) {
     const WindowFrame* anchor = nullptr;
-    int observations = 0;
+    std::vector<const WindowFrame*> observers;
     for (const auto& f : s.frames) {
       if (f->id == lm.lm.anchor_keyframe) anchor = f.get();
-      if (f->bearings.count(id) != 0) ++observations;
+      if (f->bearings.count(id) != 0) observers.push_back(f.get());
     }
-    if (anchor == nullptr || observations < 2) continue;
+    if (anchor == nullptr || observers.size() < 2) continue;
     LandmarkEstimate e;
     e.id = id;
     e.p_L = point_in_local(anchor->T_LB(), s.config.T_BC, lm.lm.f_Ca, lm.rho);
     // Quality in [0, 1]: more observations (saturating at 5), more parallax (saturating at 5 deg) and a smaller
-    // reprojection error each raise it; the product is small when any of them is poor.
-    const double q_obs = std::min(1.0, (observations - 1) / 4.0);
-    const double q_parallax = std::min(1.0, lm.parallax_deg / 5.0);
+    // reprojection error each raise it; the product is small when any of them is poor. The parallax is that of the
+    // keyframes observing it now, not at triangulation: a landmark first triangulated from a short baseline gains
+    // parallax as later keyframes see it, and its depth is then as well determined as any other's.
+    const double parallax_deg = std::max(lm.parallax_deg, current_parallax_deg(s.config.T_BC, *anchor, observers, id));
+    const double q_obs = std::min(1.0, (static_cast<double>(observers.size()) - 1.0) / 4.0);
+    const double q_parallax = std::min(1.0, parallax_deg / 5.0);
     const double q_error = std::clamp(1.0 - lm.mean_error_px / threshold, 0.0, 1.0);
     e.quality = q_obs * q_parallax * q_error;
     out.push_back(e);
