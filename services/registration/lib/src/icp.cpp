@@ -120,10 +120,11 @@ Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vecto
 }
 
 IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
-                  const Eigen::Vector3d& pivot_W) {
+                  const Eigen::Vector3d& pivot_W, const Eigen::Matrix3d& dR0) {
   IcpResult out;
   out.pivot_W = pivot_W;
   Pose pose;
+  pose.R = dR0;
   double gate = config.initial_threshold_m;
   const double conv_rot = config.convergence_rotation_deg * M_PI / 180.0;
   std::vector<Correspondence> corr;

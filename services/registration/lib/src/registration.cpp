@@ -9,6 +9,7 @@
 
 #include "twinslam/core/error.hpp"
 #include "twinslam/geometry/so3.hpp"
+#include "twinslam/registration/yaw_search.hpp"
 
 namespace twinslam::registration {
 namespace {
@@ -56,6 +57,16 @@ bool reject_fit(const RegistrationConfig& c, const IcpResult& icp, RegistrationR
                 fmt("inlier RMSE %.3f m > max_rmse_m %.3f m", r.rmse_m, c.max_rmse_m));
   }
   return true;
+}
+
+bool reject_heading(const YawSearchResult& search, RegistrationResult& r) {
+  if (!search.ambiguous) return true;
+  r.status = RegistrationStatus::kDegenerate;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "heading ambiguous: %zu points fit another heading, %zu the best (%d ICP starts)",
+                search.runner_up, search.support, search.starts);
+  r.reason = buf;
+  return false;
 }
 
 bool reject_geometry(const RegistrationConfig& c, const std::optional<Matrix6d>& prior, RegistrationResult& r) {
@@ -113,8 +124,12 @@ RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTi
     return r;
   }
   const auto t1 = Clock::now();
-  const IcpResult icp = run_icp(config, index, cloud.p_W, cloud.p_WB);
+  std::optional<double> heading_sigma_deg;
+  if (prior_covariance) heading_sigma_deg = std::sqrt((*prior_covariance)(2, 2)) * 180.0 / M_PI;  // about W's z
+  const YawSearchResult search = run_icp_with_yaw_search(config, index, cloud.p_W, cloud.p_WB, heading_sigma_deg);
+  const IcpResult& icp = search.icp;
   r.time.icp_ms = ms_since(t1);
+  r.yaw_starts = search.starts;
   r.correction_W = icp.correction_W;
   r.correction_xi << geometry::so3_log(icp.dR), icp.dp;
   r.rmse_m = icp.rmse_m;
@@ -125,7 +140,7 @@ RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTi
   r.details = compute_information(config, icp.inliers, icp.rmse_m, icp.sigma_m);
   r.information_eigenvalues = r.details.eigenvalues;
   r.time.hessian_ms = ms_since(t2);
-  if (reject_fit(config, icp, r) && reject_geometry(config, prior_covariance, r)) {
+  if (reject_fit(config, icp, r) && reject_heading(search, r) && reject_geometry(config, prior_covariance, r)) {
     r.status = RegistrationStatus::kAccepted;
     r.information = r.details.information;
   }

@@ -49,6 +49,10 @@ const std::vector<Key>& keys() {
       {"threshold_sigmas", &C::threshold_sigmas},
       {"convergence_translation_m", &C::convergence_translation_m},
       {"convergence_rotation_deg", &C::convergence_rotation_deg},
+      {"yaw_search_min_sigma_deg", &C::yaw_search_min_sigma_deg},
+      {"yaw_search_step_deg", &C::yaw_search_step_deg},
+      {"yaw_search_max_deg", &C::yaw_search_max_deg},
+      {"yaw_search_ambiguity", &C::yaw_search_ambiguity},
       {"weights", &C::weights},
       {"paper_beta", &C::paper_beta},
       {"correlation_inflation", &C::correlation_inflation},
@@ -118,6 +122,12 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(pos(threshold_sigmas), s, "threshold_sigmas", "must be > 0", threshold_sigmas);
   check(pos(convergence_translation_m), s, "convergence_translation_m", "must be > 0 m", convergence_translation_m);
   check(pos(convergence_rotation_deg), s, "convergence_rotation_deg", "must be > 0 deg", convergence_rotation_deg);
+  check(pos(yaw_search_min_sigma_deg), s, "yaw_search_min_sigma_deg", "must be > 0 deg", yaw_search_min_sigma_deg);
+  check(pos(yaw_search_step_deg), s, "yaw_search_step_deg", "must be > 0 deg", yaw_search_step_deg);
+  check(nonneg(yaw_search_max_deg) && yaw_search_max_deg <= 45.0, s, "yaw_search_max_deg", "must lie in [0, 45] deg",
+        yaw_search_max_deg);
+  check(std::isfinite(yaw_search_ambiguity) && yaw_search_ambiguity > 0.0 && yaw_search_ambiguity <= 1.0, s,
+        "yaw_search_ambiguity", "must lie in (0, 1]", yaw_search_ambiguity);
   check(pos(paper_beta), s, "paper_beta", "must be > 0", paper_beta);
   check(std::isfinite(correlation_inflation) && correlation_inflation >= 1.0, s, "correlation_inflation",
         "must be >= 1", correlation_inflation);

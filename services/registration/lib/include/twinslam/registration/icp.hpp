@@ -51,8 +51,8 @@ struct IcpResult {
 Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp,
                                    const Eigen::Vector3d& pivot_W);
 
-// Starts at the identity correction (the estimator's T_WL as it is). Deterministic.
+// Starts at the correction dR0 about the pivot (identity: the estimator's T_WL as it is). Deterministic.
 IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
-                  const Eigen::Vector3d& pivot_W);
+                  const Eigen::Vector3d& pivot_W, const Eigen::Matrix3d& dR0 = Eigen::Matrix3d::Identity());
 
 }  // namespace twinslam::registration

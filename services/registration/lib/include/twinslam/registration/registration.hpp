@@ -43,6 +43,7 @@ struct RegistrationResult {
   std::size_t source_points = 0, inliers = 0;
   double fitness = 0.0;  // inliers / source points
   int iterations = 0;
+  int yaw_starts = 1;  // ICP runs of the heading search (yaw_search.hpp); 1 when the estimator is sure of its heading
   StageTimes time;
 
   bool accepted() const { return status == RegistrationStatus::kAccepted; }

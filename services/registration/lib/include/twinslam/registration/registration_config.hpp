@@ -30,6 +30,13 @@ struct RegistrationConfig {
   double threshold_sigmas = 3.0;            // gate = this * robust sigma of the correspondence distances (KISS-ICP: 3)
   double convergence_translation_m = 1e-4;  // converged when the update's translation is below this [m] ...
   double convergence_rotation_deg = 1e-3;   // ... and its rotation below this [deg]
+  // Heading search (yaw_search.hpp): when the estimator's heading sigma is above yaw_search_min_sigma_deg, ICP also
+  // starts from headings rotated about the body by multiples of yaw_search_step_deg within +-min(3 sigma,
+  // yaw_search_max_deg), and the start whose result the twin supports best wins.
+  double yaw_search_min_sigma_deg = 1.0;  // [deg] heading sigma above which the search runs
+  double yaw_search_step_deg = 2.0;       // [deg] spacing of the start headings (< the ~3 deg ICP converges from)
+  double yaw_search_max_deg = 10.0;       // [deg] the starts span at most this either side
+  double yaw_search_ambiguity = 0.9;      // a distinct heading with >= this x the best support: ambiguous (degenerate)
 
   // --- information (information.hpp), eqs. (8)-(10) ---
   WeightMode weights = WeightMode::kAdaptive;
