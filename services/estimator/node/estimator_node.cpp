@@ -70,6 +70,7 @@ void EstimatorNode::report_fusion() {
   const MapRegistrationCounts& r = fusion_.registration_counts();
   const std::pair<const char*, unsigned long long> now[] = {
       {"alignments", f.alignments},
+      {"realignments_declined", f.realignments_declined},
       {"registrations_fused", r.attached + r.reattached},
       {"registrations_reattached", r.reattached},
       {"registrations_unmatched", r.unmatched},

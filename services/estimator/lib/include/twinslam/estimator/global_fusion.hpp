@@ -3,7 +3,8 @@
 // this in sensor-time order (sensor_worker.hpp).
 //  - GNSS fixes (in W) pair with the estimated positions to find the initial alignment T_WL (eq. 11, WorldAligner);
 //    once its heading sigma is small enough, set_world_alignment() starts the window's T_WL from it. After a long
-//    registration outage (drift grows) the alignment is found again from recent fixes (paper Sec. V).
+//    registration outage (drift grows) the alignment is found again from recent fixes (paper Sec. V) - applied only
+//    when that fit is more certain than the estimate it would replace.
 //  - Without GNSS, an initial pose given by the user ("E N U YAW", the paper's "set manually") starts it.
 //  - Accepted map registrations become MapRegistration terms (map_registration_provider.hpp) on their keyframe,
 //    read against the keyframe pose and T_WL that were published with the LocalMap they answer.
@@ -39,7 +40,8 @@ struct InitialPose {
 
 struct GlobalFusionCounts {
   unsigned long long gnss_in = 0, gnss_paired = 0, alignments = 0, registrations_in = 0, registrations_accepted = 0,
-                     registrations_unknown_keyframe = 0, registrations_before_alignment = 0;
+                     registrations_unknown_keyframe = 0, registrations_before_alignment = 0,
+                     realignments_declined = 0;  // after an outage, the GNSS fit was less certain than the estimate
 };
 
 class GlobalFusion {
@@ -62,6 +64,9 @@ class GlobalFusion {
 
  private:
   void try_align(std::int64_t stamp_ns);
+  // After an outage: whether the fit (sigmas of the T_WL prior it would set) is more certain, in heading and in
+  // horizontal position, than the estimator's own newest pose in W.
+  bool realignment_helps(const WorldAlignmentSigmas& fit) const;
 
   SlidingWindowEstimator& estimator_;
   GlobalFusionConfig config_;
