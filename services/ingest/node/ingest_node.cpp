@@ -37,6 +37,8 @@ class IngestNode::Impl {
     heartbeat_.set_state(msg::SVC_READY);
   }
 
+  void close_readers() { node_.close_readers(); }
+
   bool run() {
     if (!wait_for_readers()) return false;
     heartbeat_.set_state(msg::SVC_RUNNING);
@@ -278,7 +280,13 @@ WaitReaders parse_wait_readers(const std::string& text, int fallback) {
 
 IngestNode::IngestNode(dds::Node& node, const Dataset& dataset, IngestOptions options, const FeatureReplay* features)
     : impl_(new Impl(node, dataset, std::move(options), features)) {}
-IngestNode::~IngestNode() { delete impl_; }
+IngestNode::~IngestNode() {
+  // The FrameAck and Heartbeat callbacks capture the Impl and belong to the node, which outlives this object: close
+  // them (waiting for any running one) first. Without this, the acks and heartbeats other services still send while
+  // they shut down reached a deleted Impl (ingest exited with signal 11 after a complete city-long run).
+  impl_->close_readers();
+  delete impl_;
+}
 bool IngestNode::run() { return impl_->run(); }
 
 }  // namespace twinslam::ingest

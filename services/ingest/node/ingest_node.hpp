@@ -43,7 +43,7 @@ class IngestNode {
  public:
   // `features` may be null (images are published).
   IngestNode(dds::Node& node, const Dataset& dataset, IngestOptions options, const FeatureReplay* features = nullptr);
-  ~IngestNode();
+  ~IngestNode();  // closes the node's readers first: no callback may reach a destroyed member
   // Publishes the whole dataset (or until shutdown). Returns false if stopped early by a signal.
   // Throws std::runtime_error when a consumer does not acknowledge in time.
   bool run();
