@@ -11,10 +11,7 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 double heading_deg(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)) / kDegToRad; }
 
-double wrapped_difference_deg(double a, double b) {
-  double d = std::fmod(a - b + 540.0, 360.0) - 180.0;
-  return std::abs(d);
-}
+double wrapped_difference_deg(double a, double b) { return std::abs(std::fmod(a - b + 540.0, 360.0) - 180.0); }
 
 }  // namespace
 
@@ -51,7 +48,6 @@ YawSearchResult run_icp_with_yaw_search(const RegistrationConfig& config, const 
     if (results.size() == 1 || support > out.support) {
       out.icp = std::move(icp);
       out.support = support;
-      out.start_yaw_deg = yaw;
     }
   }
   const double best_heading = heading_deg(out.icp.dR);

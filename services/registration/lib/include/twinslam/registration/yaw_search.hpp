@@ -15,7 +15,6 @@ namespace twinslam::registration {
 struct YawSearchResult {
   IcpResult icp;                  // of the best-supported start
   int starts = 1;                 // ICP runs (1: no search)
-  double start_yaw_deg = 0.0;     // the winning start's heading offset [deg]
   std::size_t support = 0;        // the winner's support (see yaw_support)
   std::size_t runner_up = 0;      // best support among results whose heading differs by more than half a step
   bool ambiguous = false;         // runner_up >= yaw_search_ambiguity * support
