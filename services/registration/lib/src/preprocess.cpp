@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <string>
 #include <tuple>
 
@@ -28,22 +27,27 @@ void check_input(const SourceInput& in) {
 }
 
 // One centroid per occupied voxel, voxels in key order (deterministic). Coordinates relative to `pivot` so the
-// voxel keys stay small integers wherever W's origin is.
+// voxel keys stay small integers wherever W's origin is. Sorting (key, index) pairs instead of filling a std::map:
+// the same centroids in the same order, a quarter of the time in bench_registration.
 std::vector<Eigen::Vector3d> voxel_downsample(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& pivot,
                                               double voxel) {
   if (voxel <= 0.0) return p;
-  std::map<std::tuple<long, long, long>, std::pair<Eigen::Vector3d, int>> cells;
-  for (const Eigen::Vector3d& x : p) {
-    const Eigen::Vector3d v = (x - pivot) / voxel;
-    auto& cell =
-        cells[{std::lround(std::floor(v.x())), std::lround(std::floor(v.y())), std::lround(std::floor(v.z()))}];
-    if (cell.second == 0) cell.first.setZero();
-    cell.first += x;
-    ++cell.second;
+  using Key = std::tuple<long, long, long>;
+  std::vector<std::pair<Key, std::size_t>> keyed;
+  keyed.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector3d v = ((p[i] - pivot) / voxel).array().floor();
+    keyed.push_back({{std::lround(v.x()), std::lround(v.y()), std::lround(v.z())}, i});
   }
+  std::sort(keyed.begin(), keyed.end());  // by key, then by input index: sums in input order as before
   std::vector<Eigen::Vector3d> out;
-  out.reserve(cells.size());
-  for (const auto& [key, cell] : cells) out.push_back(cell.first / cell.second);
+  for (std::size_t i = 0; i < keyed.size();) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    std::size_t j = i;
+    for (; j < keyed.size() && keyed[j].first == keyed[i].first; ++j) sum += p[keyed[j].second];
+    out.push_back(sum / static_cast<double>(j - i));
+    i = j;
+  }
   return out;
 }
 
