@@ -44,7 +44,9 @@ int serve_ours(const std::string& dir) {
   ::malloc_trim(0);
   const double rss0 = rss_mb();
   const RegistrationConfig config;
-  WindowedTwin windowed(store.tile_size_m, 150.0);  // the service's defaults: 50 m prefetch ring, 1 tile per update
+  // The service's defaults (registration_node.hpp; the library's are the same): 50 m prefetch ring, one ring tile per
+  // update, indexed tiles kept 50 m beyond the ring.
+  WindowedTwin windowed(store.tile_size_m, 150.0);
   const TwinTileIndex& index = windowed.index();
   std::set<twin::TileKey> sent;
   std::vector<double> all, upd, pre, icp, hes, err, pts, its, per;

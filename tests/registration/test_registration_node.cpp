@@ -36,7 +36,7 @@ Eigen::AlignedBox3d bounds(const test::PointSet& t) {
 
 TEST(WindowedTwin, IndexesOnlyTheTilesNearAVehicleAndMatchesAFreshIndex) {
   const auto tiles = test::split_tiles(test::sample_grid(test::city_surfaces(), 1.0));
-  WindowedTwin twin(50.0, 60.0, 4096, 0.0);  // +-30 m around the vehicle, no prefetch ring
+  WindowedTwin twin(50.0, 60.0, 4096, 0.0, 1, 0.0);  // +-30 m around the vehicle, no prefetch ring, no hysteresis
   for (const auto& [key, t] : tiles) twin.add_tile(key, bounds(t), encode(t));
   const Eigen::Vector3d at = test::kCentre + Eigen::Vector3d(-35, -35, 5);
   const auto stats = twin.update("uav0", at);
@@ -75,7 +75,7 @@ double square_distance(const test::PointSet& t, const Eigen::Vector3d& p) {
 
 TEST(WindowedTwin, PrefetchesTheRingAroundTheWindowAFewTilesPerUpdateNearestFirst) {
   const auto tiles = test::split_tiles(test::sample_grid(test::city_surfaces(), 1.0));
-  WindowedTwin twin(50.0, 20.0, 4096, 40.0, 1);  // window +-10 m, ring out to 50 m, one ring tile per update
+  WindowedTwin twin(50.0, 20.0, 4096, 40.0, 1, 0.0);  // window +-10 m, ring out to 50 m, one per update
   for (const auto& [key, t] : tiles) twin.add_tile(key, bounds(t), encode(t));
   const Eigen::Vector3d at = test::kCentre + Eigen::Vector3d(-35, -35, 5);
   std::size_t in_window = 0, in_ring = 0;

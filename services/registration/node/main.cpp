@@ -18,14 +18,17 @@ int main(int argc, char** argv) {
   app.add_option("--window", options.window_m, "Square window of twin around each vehicle [m]")->capture_default_str();
   app.add_option("--prefetch", options.prefetch_m, "Ring around the window whose tiles are indexed ahead [m]")
       ->capture_default_str();
+  app.add_option("--keep", options.keep_m, "Indexed tiles are dropped only this far beyond the ring [m]")
+      ->capture_default_str();
   return dds::service_main("registration", app, service, argc, argv, [&] {
     if (!config_file.empty()) options.registration = reg::load_registration_config(config_file);
     if (weights == "paper") options.registration.weights = reg::WeightMode::kPaper;
     if (weights == "adaptive") options.registration.weights = reg::WeightMode::kAdaptive;
     if (weights == "fixed") options.registration.weights = reg::WeightMode::kFixed;
     options.registration.validate(config_file.empty() ? "command line" : config_file);
-    if (!(options.tile_size_m > 0.0) || !(options.window_m > 0.0) || !(options.prefetch_m >= 0.0)) {
-      throw twinslam::UsageError("--tile-size and --window must be > 0, --prefetch >= 0");
+    if (!(options.tile_size_m > 0.0) || !(options.window_m > 0.0) || !(options.prefetch_m >= 0.0) ||
+        !(options.keep_m >= 0.0)) {
+      throw twinslam::UsageError("--tile-size and --window must be > 0, --prefetch and --keep >= 0");
     }
     dds::Node node(service.node);
     dds::Counters counters;

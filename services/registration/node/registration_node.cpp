@@ -42,7 +42,7 @@ RegistrationNode::RegistrationNode(dds::Node& node, dds::Counters& counters, con
       options_(options),
       writer_(node.writer<msg::Registration>(dds::topics::kRegistration)),
       twin_(options.tile_size_m, options.window_m, options.max_stored_tiles, options.prefetch_m,
-            options.prefetch_per_update),
+            options.prefetch_per_update, options.keep_m),
       worker_([this] { run(); }) {
   node.subscribe<msg::LocalMap>(dds::topics::kLocalMap, [this](const msg::LocalMap& m) {
     counters_.add("local_maps_in");

@@ -28,6 +28,7 @@ struct RegistrationNodeOptions {
   std::size_t max_stored_tiles = 4096;  // compressed tiles kept (farthest evicted first)
   double prefetch_m = 50.0;             // ring around the window indexed ahead (windowed_twin.hpp) [m]
   std::size_t prefetch_per_update = 1;  // ring tiles built per registration at most
+  double keep_m = 50.0;                 // indexed tiles are dropped beyond the ring plus this (hysteresis) [m]
 };
 
 // Wire key "<twin id>/<ix>_<iy>" -> tile key; nullopt if malformed.

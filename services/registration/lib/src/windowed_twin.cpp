@@ -26,14 +26,15 @@ double square_distance(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& p)
 }  // namespace
 
 WindowedTwin::WindowedTwin(double tile_size_m, double window_m, std::size_t max_tiles, double prefetch_m,
-                           std::size_t prefetch_per_update)
+                           std::size_t prefetch_per_update, double keep_m)
     : window_m_(window_m),
       prefetch_m_(prefetch_m),
+      keep_m_(keep_m),
       prefetch_per_update_(prefetch_per_update),
       max_tiles_(max_tiles),
       index_(tile_size_m) {
   if (!(window_m > 0.0) || max_tiles == 0) throw InputError("windowed twin: window_m and max_tiles must be > 0");
-  if (!(prefetch_m >= 0.0)) throw InputError("windowed twin: prefetch_m must be >= 0");
+  if (!(prefetch_m >= 0.0) || !(keep_m >= 0.0)) throw InputError("windowed twin: prefetch_m and keep_m must be >= 0");
 }
 
 double WindowedTwin::window_distance(const Eigen::AlignedBox3d& bounds_W) const {
@@ -90,7 +91,7 @@ WindowedTwinStats WindowedTwin::update(const std::string& vehicle, const Eigen::
       needed.push_back(key);
     } else if (d <= half + prefetch_m_ && !have) {
       ring.emplace_back(d, key);
-    } else if (d > half + prefetch_m_ && have) {
+    } else if (d > half + prefetch_m_ + keep_m_ && have) {
       index_.remove_tile(key);
       ++stats.removed;
     }
