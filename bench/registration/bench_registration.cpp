@@ -10,7 +10,8 @@
 // N of the same keyframes: +-350 m crop, KD-tree rebuilt per call, PCL IterativeClosestPointWithNormals, 25
 // iterations, 8 m max correspondence distance. A third (`--serve DIR probe N`) compares the index's structure with a
 // voxel hash (index_probe.cpp).
-// Usage: bench_registration [--sizes 1000,5000] [--spacing M] [--keyframes K] [--pcl-keyframes N] [--keep DIR]
+// Usage: bench_registration [--sizes 1000,5000] [--spacing M] [--keyframes K] [--pcl-keyframes N] [--threads T]
+//        [--keep DIR]   (T: RegistrationConfig::threads of ours; the PCL recipe runs as PCL configures itself)
 #include <unistd.h>
 #include <algorithm>
 #include <chrono>
@@ -131,11 +132,11 @@ void child(const std::string& args, double (&out)[N]) {
   ::pclose(f);
 }
 
-void print(const std::vector<Row>& rows, double spacing_m) {
+void print(const std::vector<Row>& rows, double spacing_m, int threads) {
   std::printf(
       "registration per keyframe (city-loops, 150 m window of 50 m tiles, twin point spacing %.1f m, "
-      "150-1500 landmarks, 0.1 m noise, 10 %% outliers, drift <= 0.5 m / 1 deg)\n\n",
-      spacing_m);
+      "150-1500 landmarks, 0.1 m noise, 10 %% outliers, drift <= 0.5 m / 1 deg; %d thread(s))\n\n",
+      spacing_m, threads);
   std::printf(
       "| city | tiles | keyframes | accepted | all-in median [ms] | all-in p99 [ms] | index update median / p99 "
       "[ms] | preprocess [ms] | ICP [ms] | Hessian [ms] | position error median [m] | index [MB] | RSS growth "
@@ -189,10 +190,10 @@ int main(int argc, char** argv) {
     const std::string mode = argv[3];
     const int n = argc >= 5 ? std::stoi(argv[4]) : 10;
     if (mode == "probe") return bench::serve_probe(argv[2], n);
-    return mode == "ours" ? bench::serve_ours(argv[2]) : bench::serve_pcl(argv[2], n);
+    return mode == "ours" ? bench::serve_ours(argv[2], n) : bench::serve_pcl(argv[2], n);
   }
   double spacing_m = 1.0;
-  int keyframes = 150, pcl_keyframes = 10;
+  int keyframes = 150, pcl_keyframes = 10, threads = 1;
   std::vector<double> sizes{1000, 5000};
   std::string keep;  // --keep DIR: leave the cities' stores and keyframes there (profiling: --serve DIR/1000 ours)
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -205,11 +206,14 @@ int main(int argc, char** argv) {
       keyframes = std::stoi(value);
     else if (flag == "--pcl-keyframes")
       pcl_keyframes = std::stoi(value);
+    else if (flag == "--threads")
+      threads = std::stoi(value);
     else if (flag == "--keep")
       keep = value;
     else {
       std::fprintf(stderr,
-                   "usage: bench_registration [--sizes S,S] [--spacing M] [--keyframes K] [--pcl-keyframes N] [--keep DIR]\n");
+                   "usage: bench_registration [--sizes S,S] [--spacing M] [--keyframes K] [--pcl-keyframes N] [--threads T] "
+                   "[--keep DIR]\n");
       return 2;
     }
   }
@@ -223,13 +227,13 @@ int main(int argc, char** argv) {
     r.size_m = s;
     r.build_s = prepare(s, spacing_m, keyframes, dir, r.tiles);
     std::fprintf(stderr, "city %.0f m: store %.1f s, %zu tiles\n", s, r.build_s, r.tiles);
-    child(dir.string() + " ours", r.ours);
+    child(dir.string() + " ours " + std::to_string(threads), r.ours);
     child(dir.string() + " pcl " + std::to_string(pcl_keyframes), r.pcl);
     child(dir.string() + " probe 20", r.probe);
     rows.push_back(r);
     if (keep.empty()) fs::remove_all(dir);  // disk space: one city at a time
   }
   if (keep.empty()) fs::remove_all(root);
-  print(rows, spacing_m);
+  print(rows, spacing_m, threads);
   return 0;
 }

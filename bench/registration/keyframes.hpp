@@ -77,7 +77,7 @@ inline double pct(std::vector<double> v, double q) {
 }
 
 // The measuring children (serve.cpp): each prints one line of numbers on stdout.
-int serve_ours(const std::string& dir);
+int serve_ours(const std::string& dir, int threads);  // threads: RegistrationConfig::threads
 int serve_pcl(const std::string& dir, int keyframes);
 int serve_probe(const std::string& dir, int keyframes);  // index_probe.cpp
 

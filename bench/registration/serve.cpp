@@ -35,7 +35,7 @@ double receive_tiles(WindowedTwin& twin, const twin::TwinIndex& store, const std
 // Prints: keyframes, accepted, all-in median, p99, index-update median, p99, preprocess, ICP, Hessian medians [ms],
 // median position error of accepted keyframes [m], index memory (largest) [MB], RSS growth [MB], medians of source
 // points, ICP iterations and ICP time per point and association (iterations + the final one) [us].
-int serve_ours(const std::string& dir) {
+int serve_ours(const std::string& dir, int threads) {
   const std::vector<Keyframe> kfs = read_keyframes(dir + "/keyframes.bin");
   const std::string twin_dir = dir + "/twin";
   // The registration service gets tiles over DDS and never reads the store's index: it is read (and its parse heap
@@ -43,7 +43,8 @@ int serve_ours(const std::string& dir) {
   const twin::TwinIndex store = twin::read_twin_index(twin_dir);
   ::malloc_trim(0);
   const double rss0 = rss_mb();
-  const RegistrationConfig config;
+  RegistrationConfig config;
+  config.threads = threads;
   // The service's defaults (registration_node.hpp; the library's are the same): 50 m prefetch ring, one ring tile per
   // update, indexed tiles kept 50 m beyond the ring.
   WindowedTwin windowed(store.tile_size_m, 150.0);

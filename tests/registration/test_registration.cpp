@@ -65,6 +65,25 @@ TEST(Registration, IsDeterministic) {
   EXPECT_EQ(a.information, b.information);
 }
 
+// The parallel nearest-neighbour searches (threads > 1) change the time, never the answer: same points kept, same
+// correspondences in the same order, bit-identical correction and information.
+TEST(Registration, GivesTheSameResultOnAnyNumberOfThreads) {
+  const Scene& s = scene();
+  const SourceInput in = test::make_source(s.landmarks(2000, 0.2), s.error, kBody);
+  RegistrationConfig one, four;
+  four.threads = 4;
+  const RegistrationResult a = register_cloud(one, s.index, in), b = register_cloud(four, s.index, in);
+  ASSERT_TRUE(a.accepted()) << a.reason;
+  EXPECT_EQ(a.source_points, b.source_points);
+  EXPECT_EQ(a.inliers, b.inliers);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.correction_W.matrix(), b.correction_W.matrix());
+  EXPECT_EQ(a.information, b.information);
+  std::vector<Eigen::Vector3d> p;
+  for (const Landmark& l : in.landmarks) p.push_back(l.p_L);
+  EXPECT_EQ(statistical_inliers(p, kBody, 8, 2.0, 1), statistical_inliers(p, kBody, 8, 2.0, 3));
+}
+
 TEST(Registration, InformationIsSymmetricPositiveSemiDefiniteInEveryMode) {
   const Scene& s = scene();
   const SourceInput in = test::make_source(s.landmarks(1000, 0.2), s.error, kBody);

@@ -19,17 +19,27 @@ struct Pose {
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
 };
 
+// The nearest twin point of every source point within the gate, in source order. The searches are independent
+// (in parallel on `threads`); the list is then compacted in order, so it does not depend on the thread count.
 std::vector<Correspondence> associate(const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
-                                      const Eigen::Vector3d& c, const Pose& pose, double gate) {
-  std::vector<Correspondence> out;
-  out.reserve(p_W.size());
-  for (const Eigen::Vector3d& x : p_W) {
-    const Eigen::Vector3d a = pose.R * (x - c) + pose.t;
+                                      const Eigen::Vector3d& c, const Pose& pose, double gate, int threads) {
+  std::vector<Correspondence> slot(p_W.size());
+  std::vector<char> found(p_W.size(), 0);
+  const auto n = static_cast<std::ptrdiff_t>(p_W.size());
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const Eigen::Vector3d a = pose.R * (p_W[k] - c) + pose.t;
     const auto m = index.nearest(c + a, gate);
     if (!m) continue;
     const Eigen::Vector3d b = m->p_W - c;
-    out.push_back({a, b, m->n_W, m->n_W.dot(a - b), m->distance_m});
+    slot[k] = {a, b, m->n_W, m->n_W.dot(a - b), m->distance_m};
+    found[k] = 1;
   }
+  std::vector<Correspondence> out;
+  out.reserve(p_W.size());
+  for (std::size_t k = 0; k < slot.size(); ++k)
+    if (found[k]) out.push_back(slot[k]);
   return out;
 }
 
@@ -134,7 +144,7 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
   std::vector<Correspondence> corr;
   Vector6d x = Vector6d::Zero(), x_prev = Vector6d::Constant(std::numeric_limits<double>::infinity());
   for (int it = 1; it <= config.max_iterations; ++it) {
-    corr = associate(index, p_W, pivot_W, pose, gate);
+    corr = associate(index, p_W, pivot_W, pose, gate, config.threads);
     if (corr.size() < 6) break;  // nothing to solve for: not converged
     // KISS-ICP's adaptive threshold: the gate follows 3 sigma of the distances (never growing, never below the
     // floor), and the kernel scale is that sigma, so far correspondences lose weight smoothly as alignment improves.
@@ -157,7 +167,7 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
     }
     x_prev = x;
   }
-  finish(config, out.converged ? carry(std::move(corr), x, gate) : associate(index, p_W, pivot_W, pose, gate), pose,
+  finish(config, out.converged ? carry(std::move(corr), x, gate) : associate(index, p_W, pivot_W, pose, gate, config.threads), pose,
          gate, out);
   return out;
 }

@@ -52,17 +52,17 @@ std::vector<Eigen::Vector3d> voxel_downsample(const std::vector<Eigen::Vector3d>
 }
 
 std::vector<Eigen::Vector3d> remove_outliers(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& pivot,
-                                             int neighbors, double stddev) {
+                                             int neighbors, double stddev, int threads) {
   if (neighbors <= 0 || p.size() <= static_cast<std::size_t>(neighbors)) return p;
   std::vector<Eigen::Vector3d> out;
-  for (const std::size_t i : statistical_inliers(p, pivot, neighbors, stddev)) out.push_back(p[i]);
+  for (const std::size_t i : statistical_inliers(p, pivot, neighbors, stddev, threads)) out.push_back(p[i]);
   return out;
 }
 
 }  // namespace
 
 std::vector<std::size_t> statistical_inliers(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& origin,
-                                             int neighbors, double stddev_mul) {
+                                             int neighbors, double stddev_mul, int threads) {
   std::vector<std::size_t> kept;
   const auto k = static_cast<std::size_t>(std::clamp(neighbors, 1, 32));
   if (p.size() <= k) {
@@ -76,15 +76,20 @@ std::vector<std::size_t> statistical_inliers(const std::vector<Eigen::Vector3d>&
     xyz.insert(xyz.end(), {q.x(), q.y(), q.z()});
   }
   const KdTree3f tree(std::move(xyz));
-  // First pass: mean distance to the k nearest others (the query itself is the first of k + 1 found).
+  // First pass: mean distance to the k nearest others (the query itself is the first of k + 1 found), each point's
+  // on its own (in parallel), then summed in order.
   std::vector<float> mean_distance(p.size());
-  float d_sq[KdTree3f::kMaxK];
-  double sum = 0.0, sq_sum = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const std::size_t found = tree.knn(tree.point(i), k + 1, d_sq);
+  const auto n_points = static_cast<std::ptrdiff_t>(p.size());
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+  for (std::ptrdiff_t i = 0; i < n_points; ++i) {
+    float d_sq[KdTree3f::kMaxK];
+    const std::size_t found = tree.knn(tree.point(static_cast<std::size_t>(i)), k + 1, d_sq);
     double s = 0.0;
     for (std::size_t j = 1; j < found; ++j) s += std::sqrt(d_sq[j]);
-    mean_distance[i] = static_cast<float>(s / static_cast<double>(k));
+    mean_distance[static_cast<std::size_t>(i)] = static_cast<float>(s / static_cast<double>(k));
+  }
+  double sum = 0.0, sq_sum = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
     sum += mean_distance[i];
     sq_sum += static_cast<double>(mean_distance[i]) * mean_distance[i];
   }
@@ -111,7 +116,7 @@ SourceCloud preprocess(const RegistrationConfig& config, const SourceInput& inpu
   out.after_quality = p_W.size();
   p_W = voxel_downsample(p_W, out.p_WB, config.voxel_size_m);
   out.after_voxel = p_W.size();
-  out.p_W = remove_outliers(p_W, out.p_WB, config.outlier_neighbors, config.outlier_stddev);
+  out.p_W = remove_outliers(p_W, out.p_WB, config.outlier_neighbors, config.outlier_stddev, config.threads);
   return out;
 }
 

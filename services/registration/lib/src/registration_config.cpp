@@ -43,6 +43,7 @@ const std::vector<Key>& keys() {
       {"outlier_neighbors", &C::outlier_neighbors},
       {"outlier_stddev", &C::outlier_stddev},
       {"min_points", &C::min_points},
+      {"threads", &C::threads},
       {"max_iterations", &C::max_iterations},
       {"initial_threshold_m", &C::initial_threshold_m},
       {"min_threshold_m", &C::min_threshold_m},
@@ -115,6 +116,7 @@ void RegistrationConfig::validate(const std::string& s) const {
         outlier_neighbors);
   check(pos(outlier_stddev), s, "outlier_stddev", "must be > 0", outlier_stddev);
   check(min_points >= 6, s, "min_points", "must be >= 6 (6 unknowns)", min_points);
+  check(threads >= 1 && threads <= 256, s, "threads", "must be in [1, 256]", threads);
   check(max_iterations >= 1, s, "max_iterations", "must be >= 1", max_iterations);
   check(pos(initial_threshold_m), s, "initial_threshold_m", "must be > 0 m", initial_threshold_m);
   check(pos(min_threshold_m) && min_threshold_m <= initial_threshold_m, s, "min_threshold_m",

@@ -36,8 +36,9 @@ struct SourceCloud {
 // Indices (ascending) of the points whose mean distance to their `neighbors` nearest others is at most
 // mean + stddev_mul * stddev over the cloud (PCL StatisticalOutlierRemoval, setMeanK / setStddevMulThresh). Points are
 // taken relative to `origin` in float, as PCL would hold them. neighbors in [1, 32]; fewer points than that: all kept.
+// The neighbour searches run on `threads` threads; the result does not depend on it.
 std::vector<std::size_t> statistical_inliers(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& origin,
-                                             int neighbors, double stddev_mul);
+                                             int neighbors, double stddev_mul, int threads = 1);
 
 // Throws InputError for a non-finite landmark or pose, or a quality outside [0, 1] (naming the landmark index).
 // Deterministic: the output order depends only on the input.

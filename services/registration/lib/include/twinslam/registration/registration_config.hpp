@@ -23,6 +23,10 @@ struct RegistrationConfig {
   double outlier_stddev = 2.0;  // ... drop points whose mean neighbour distance > mean + this * stddev
   int min_points = 30;          // fewer source points after preprocessing: rejected (too few points)
 
+  // --- compute ---
+  int threads = 1;  // threads for the nearest-neighbour searches (ICP association, outlier removal); results are
+                    // identical for any count. 1: the pipeline's 2-core default, beside the estimator
+
   // --- ICP (icp.hpp), eq. (2) ---
   int max_iterations = 30;                  // Gauss-Newton iterations at most
   double initial_threshold_m = 3.0;         // correspondence gate at the first iteration [m] (>= expected drift)
