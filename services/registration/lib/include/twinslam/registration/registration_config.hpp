@@ -55,8 +55,8 @@ struct RegistrationConfig {
   // --- acceptance (registration.hpp) ---
   int min_inliers = 30;               // fewer inliers at the end: rejected
   double min_fitness = 0.3;           // inliers / source points below this: rejected [-]
-  double max_rmse_m = 0.5;            // inlier point-to-plane RMSE above this: rejected [m] (0.3 refused most
-                                      // VIO clouds on city-long; their weight already falls with the residuals)
+  double max_rmse_m = 1.0;            // inlier point-to-plane RMSE above this: rejected [m] (0.3 and 0.5 refused
+                                      // most VIO clouds on city-long / city-survey; the weight falls with the RMSE)
   int max_zero_directions = 2;        // more poorly observed directions than this: rejected (degenerate)
   double max_mahalanobis_sq = 22.46;  // correction vs the estimator's covariance: chi^2(6 dof) at 99.9 %
   // ... whose diagonal gets the registration's own uncertainty first (the twin's modelling error, ICP noise), so a
