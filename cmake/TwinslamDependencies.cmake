@@ -31,11 +31,12 @@ find_path(OSMIUM_INCLUDE_DIR osmium/osm.hpp REQUIRED)
 find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
 # nanoflann 1.4 (header-only) for the registration library's KD-trees (services/registration/lib/src/kdtree.hpp).
 find_package(nanoflann 1.4 REQUIRED)
-# OpenMP (GCC's libgomp) for the registration library's parallel nearest-neighbour searches (RegistrationConfig::threads).
+# OpenMP (GCC's libgomp) for the registration library's parallel nearest-neighbour searches
+# (RegistrationConfig::threads).
 find_package(OpenMP REQUIRED COMPONENTS CXX)
-# PCL 1.13 for the registration library (KdTreeFLANN per twin tile, VoxelGrid, StatisticalOutlierRemoval, and
-# IterativeClosestPointWithNormals as the reference). PCL's config drags VTK, whose MPI targets fail in a C++-only
-# project: disable VTK first. PCL headers cost ~24 s and ~2 GB per translation unit
-#: only .cpp files of services/registration/lib (and its tests/benchmark) include them.
+# PCL 1.13 as the registration library's reference in its tests and benchmark (StatisticalOutlierRemoval,
+# IterativeClosestPointWithNormals, the paper code's recipe). PCL's config drags VTK, whose MPI targets fail in a
+# C++-only project: disable VTK first. PCL headers cost ~24 s and ~2 GB per translation unit: only
+# tests/registration/test_pcl_reference.cpp and bench/registration/pcl_baseline.cpp include them.
 set(CMAKE_DISABLE_FIND_PACKAGE_VTK ON)
 find_package(PCL 1.13 REQUIRED COMPONENTS common kdtree search registration features filters io)

@@ -212,8 +212,8 @@ int main(int argc, char** argv) {
       keep = value;
     else {
       std::fprintf(stderr,
-                   "usage: bench_registration [--sizes S,S] [--spacing M] [--keyframes K] [--pcl-keyframes N] [--threads T] "
-                   "[--keep DIR]\n");
+                   "usage: bench_registration [--sizes S,S] [--spacing M] [--keyframes K] [--pcl-keyframes N] "
+                   "[--threads T] [--keep DIR]\n");
       return 2;
     }
   }

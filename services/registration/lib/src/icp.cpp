@@ -167,8 +167,9 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
     }
     x_prev = x;
   }
-  finish(config, out.converged ? carry(std::move(corr), x, gate) : associate(index, p_W, pivot_W, pose, gate, config.threads), pose,
-         gate, out);
+  std::vector<Correspondence> last = out.converged ? carry(std::move(corr), x, gate)
+                                                  : associate(index, p_W, pivot_W, pose, gate, config.threads);
+  finish(config, last, pose, gate, out);
   return out;
 }
 

@@ -28,7 +28,7 @@ void check_input(const SourceInput& in) {
 
 // One centroid per occupied voxel, voxels in key order (deterministic). Coordinates relative to `pivot` so the
 // voxel keys stay small integers wherever W's origin is. Sorting (key, index) pairs instead of filling a std::map:
-// the same centroids in the same order, a quarter of the time in bench_registration.
+// the same centroids in the same order, 0.21 instead of 0.24 ms on bench_registration's ~930-point clouds.
 std::vector<Eigen::Vector3d> voxel_downsample(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& pivot,
                                               double voxel) {
   if (voxel <= 0.0) return p;
