@@ -1,6 +1,7 @@
 // The run outputs of CONTRACTS.md: trajectory.tum / trajectory_local.tum read back to the poses recorded,
 // timing.csv has one row per pose with end-to-end time from this process's clock, registrations.csv has the
 // contract's columns.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -34,7 +35,8 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   r.stamp_ns = 1'100'000'000LL;
   r.accepted = true;
   r.info_eigenvalues << 1, 2, 3, 4, 5, 6;
-  rec.local_map(r.stamp_ns, 500.0, 40);
+  const Eigen::Isometry3d T_WB_kf(Eigen::Translation3d(1, 2, 3) * Eigen::AngleAxisd(0.25, Eigen::Vector3d::UnitZ()));
+  rec.local_map(r.stamp_ns, 500.0, 40, T_WB_kf);  // the estimator had a world alignment: the pose is in W
   rec.local_map(r.stamp_ns, 900.0, 40);  // a re-delivery: the first sighting counts
   rec.registration(r, 512.5);
   cli::RegistrationRecord rejected;
@@ -65,20 +67,26 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   });
   EXPECT_EQ(rows, 6u);  // every frame has a timing row, estimated or not
   std::size_t regs = 0;
-  read_csv(dir / "registrations.csv", 21, [&](const CsvRow& row) {
+  read_csv(dir / "registrations.csv", 28, [&](const CsvRow& row) {
     if (row.line == 1) {
       EXPECT_EQ(row.cells[19], "pipeline_latency_ms");
       EXPECT_EQ(row.cells[20], "reason");
+      EXPECT_EQ(row.cells[21], "kf_x_m");
+      EXPECT_EQ(row.cells[27], "kf_qw");
       return;
     }
     if (regs++ == 0) {
       EXPECT_EQ(row.cells[1], "1");
       EXPECT_EQ(row.cells[11], "6");
       EXPECT_EQ(row.cells[19], "12.5");
+      // The keyframe pose the LocalMap carried in W, which the correction applies to.
+      EXPECT_DOUBLE_EQ(parse_double(dir / "registrations.csv", row, 22, "kf_y_m"), 2.0);
+      EXPECT_NEAR(parse_double(dir / "registrations.csv", row, 26, "kf_qz"), std::sin(0.125), 1e-9);
     } else {
       EXPECT_EQ(row.cells[1], "0");
       EXPECT_EQ(row.cells[19], "");
       EXPECT_EQ(row.cells[20], "rmse 0.41 m > 0.3 m; 12 inliers");
+      EXPECT_EQ(row.cells[21], "");  // no LocalMap seen: no pose
     }
   });
   EXPECT_EQ(regs, 2u);

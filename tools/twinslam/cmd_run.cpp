@@ -110,7 +110,10 @@ int run_pipeline(const RunOptions& o) {
   };
   hooks.odometry = [&](const msg::Odometry& m) { record.odometry(to_record(m), since_ms()); };
   hooks.local_map = [&](const msg::LocalMap& m) {
-    record.local_map(m.keyframe_stamp_ns(), since_ms(), m.landmarks().size());
+    // The estimator sends its covariance once it has a world alignment: then the keyframe pose is in W.
+    std::optional<Eigen::Isometry3d> T_WB;
+    if (!m.T_WB_covariance().empty()) T_WB = dds::from_msg(m.T_WL()) * dds::from_msg(m.T_LB());
+    record.local_map(m.keyframe_stamp_ns(), since_ms(), m.landmarks().size(), T_WB);
   };
   hooks.registration = [&](const msg::Registration& m) { record.registration(to_record(m), since_ms()); };
   TopicMonitor monitor(recorder, /*reliable=*/true, hooks);

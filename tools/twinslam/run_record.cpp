@@ -27,9 +27,11 @@ void RunRecord::odometry(const OdometryRecord& r, double wall_ms) {
   odometry_.emplace_back(r, it == frame_wall_ms_.end() ? -1.0 : wall_ms - it->second);
 }
 
-void RunRecord::local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::size_t landmarks) {
+void RunRecord::local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::size_t landmarks,
+                          const std::optional<Eigen::Isometry3d>& T_WB_world) {
   std::lock_guard lock(mutex_);
   if (local_map_wall_ms_.emplace(keyframe_stamp_ns, wall_ms).second) local_map_sizes_.push_back(landmarks);
+  if (T_WB_world) local_map_T_WB_.emplace(keyframe_stamp_ns, *T_WB_world);
 }
 
 std::pair<std::size_t, std::size_t> RunRecord::local_map_landmarks() const {
@@ -44,6 +46,7 @@ void RunRecord::registration(RegistrationRecord r, double wall_ms) {
   std::lock_guard lock(mutex_);
   const auto it = local_map_wall_ms_.find(r.stamp_ns);
   r.pipeline_latency_ms = it == local_map_wall_ms_.end() ? std::nan("") : wall_ms - it->second;
+  if (const auto pose = local_map_T_WB_.find(r.stamp_ns); pose != local_map_T_WB_.end()) r.keyframe_T_WB = pose->second;
   registrations_.push_back(std::move(r));
 }
 
@@ -115,7 +118,7 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
     std::ofstream f(dir / "registrations.csv");
     if (!f) throw InputError((dir / "registrations.csv").string() + ": cannot write");
     f << "stamp_ns,accepted,rmse_m,inliers,fitness,time_ms,ev1,ev2,ev3,ev4,ev5,ev6,dx_m,dy_m,dz_m,droll_deg,"
-         "dpitch_deg,dyaw_deg,latency_ms,pipeline_latency_ms,reason\n";
+         "dpitch_deg,dyaw_deg,latency_ms,pipeline_latency_ms,reason,kf_x_m,kf_y_m,kf_z_m,kf_qx,kf_qy,kf_qz,kf_qw\n";
     for (const auto& r : registrations_) {
       f << r.stamp_ns << ',' << (r.accepted ? 1 : 0) << ',' << r.rmse_m << ',' << r.inliers << ',' << r.fitness << ','
         << r.time_ms;
@@ -127,7 +130,17 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
       std::replace(reason.begin(), reason.end(), '\n', ' ');
       f << ',' << r.latency_ms << ',';
       if (std::isfinite(r.pipeline_latency_ms)) f << r.pipeline_latency_ms;
-      f << ',' << reason << '\n';
+      f << ',' << reason;
+      if (r.keyframe_T_WB) {
+        const Eigen::Vector3d p = r.keyframe_T_WB->translation();
+        const Eigen::Quaterniond q(r.keyframe_T_WB->linear());
+        char pose[200];
+        std::snprintf(pose, sizeof pose, ",%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f", p.x(), p.y(), p.z(), q.x(), q.y(), q.z(),
+                      q.w());
+        f << pose << '\n';
+      } else {
+        f << ",,,,,,,\n";
+      }
     }
     written.push_back(dir / "registrations.csv");
   }

@@ -37,6 +37,9 @@ struct RegistrationRecord {
   // was not seen.
   double pipeline_latency_ms = 0;
   std::string reason;     // "accepted", or why it was rejected (one line, no commas written)
+  // The keyframe pose T_WB the LocalMap carried (T_WL T_LB), when the estimator had a world alignment then (it sent
+  // its covariance): what the correction applies to. Filled by registration() from the LocalMap seen here.
+  std::optional<Eigen::Isometry3d> keyframe_T_WB;
 };
 
 class RunRecord {
@@ -45,8 +48,10 @@ class RunRecord {
   void frame_in(std::int64_t stamp_ns, double wall_ms);                 // image or feature frame sent by ingest
   void features(std::int64_t stamp_ns, double tracking_ms);
   void odometry(const OdometryRecord& r, double wall_ms);
-  void local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::size_t landmarks);  // a LocalMap on the wire
-  void registration(RegistrationRecord r, double wall_ms);             // fills r.pipeline_latency_ms
+  // A LocalMap on the wire; T_WB_world: its keyframe pose when it was in W (the estimator had a world alignment).
+  void local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::size_t landmarks,
+                 const std::optional<Eigen::Isometry3d>& T_WB_world = std::nullopt);
+  void registration(RegistrationRecord r, double wall_ms);  // fills r.pipeline_latency_ms and r.keyframe_T_WB
   // Median and 99th percentile of pipeline_latency_ms over the registrations whose LocalMap was seen [ms].
   struct Latency {
     std::size_t count = 0;
@@ -66,6 +71,7 @@ class RunRecord {
  private:
   mutable std::mutex mutex_;
   std::map<std::int64_t, double> frame_wall_ms_, tracking_ms_, local_map_wall_ms_;
+  std::map<std::int64_t, Eigen::Isometry3d> local_map_T_WB_;
   std::vector<std::pair<OdometryRecord, double>> odometry_;  // with end-to-end ms
   std::vector<RegistrationRecord> registrations_;
   std::vector<std::size_t> local_map_sizes_;
