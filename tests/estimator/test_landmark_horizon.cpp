@@ -83,3 +83,23 @@ TEST(LandmarkHorizon, BadConfigNamesTheKey) {
 
 }  // namespace
 }  // namespace twinslam::estimator
+
+namespace twinslam::estimator {
+namespace {
+
+TEST(LandmarkHorizon, WithCovariancesTheBestEstimateIsTheMostCertain) {
+  // Quality saturates (5 deg of parallax) long before the depth is good far away: with covariances the remembered
+  // estimate is the one with the smallest covariance, not the last at full quality.
+  LandmarkHorizon h({.horizon_s = 10.0, .horizon_m = 100.0, .max_landmarks = 100});
+  LandmarkEstimate a{1, Eigen::Vector3d(40, 0, 0), 1.0, Eigen::Matrix3d::Identity() * 0.04};
+  LandmarkEstimate b{1, Eigen::Vector3d(41, 0, 0), 1.0, Eigen::Matrix3d::Identity() * 1.0};
+  h.update(0, Eigen::Vector3d::Zero(), {a});
+  h.update(kSecond, Eigen::Vector3d::Zero(), {b});
+  const auto out = h.update(2 * kSecond, Eigen::Vector3d::Zero(), {});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_DOUBLE_EQ(out[0].p_L.x(), 40.0);
+  EXPECT_DOUBLE_EQ(out[0].cov_L(0, 0), 0.04);
+}
+
+}  // namespace
+}  // namespace twinslam::estimator

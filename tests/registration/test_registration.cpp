@@ -189,8 +189,38 @@ TEST(Registration, BadInputIsAnInputErrorNotACrash) {
   in.landmarks[3].quality = 2.0;
   EXPECT_THROW(register_cloud(RegistrationConfig{}, s.index, in), InputError);
   in.landmarks[3].quality = 1.0;
+  in.landmarks[4].cov_L(1, 2) = 0.5;  // not symmetric
+  EXPECT_THROW(register_cloud(RegistrationConfig{}, s.index, in), InputError);
+  in.landmarks[4].cov_L(1, 2) = 0.0;
   in.landmarks[5].p_L.x() = NAN;
   EXPECT_THROW(register_cloud(RegistrationConfig{}, s.index, in), InputError);
+}
+
+TEST(Registration, WeighsEachLandmarkByItsCovarianceAlongTheNormal) {
+  // A third of the landmarks are far ones whose depth is poor: each is 0.3 m off along its viewing ray (here +x, as a
+  // forward camera would see them; within the gate, so the robust kernel keeps them), and its covariance says so
+  // (0.5 m along x). Weighted by it the registration ignores their error; every landmark counted the same
+  // (surface_sigma_m 0, the paper's way) it is pulled along x.
+  const Scene& s = scene();
+  SourceInput in = test::make_source(s.landmarks(3000, 0.0), s.error, kBody);
+  const Eigen::Matrix3d good = 0.05 * 0.05 * Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d deep = good;
+  deep(0, 0) = 0.25;
+  for (std::size_t i = 0; i < in.landmarks.size(); ++i) {
+    in.landmarks[i].cov_L = i % 3 == 0 ? deep : good;
+    if (i % 3 == 0) in.landmarks[i].p_L.x() += 0.3;
+  }
+  const Eigen::Vector3d p_WB_guess = s.error * kBody;
+  const auto error_m = [&](const RegistrationConfig& c) {
+    const RegistrationResult r = register_cloud(c, s.index, in);
+    EXPECT_TRUE(r.accepted()) << r.reason;
+    return (p_WB_guess + r.correction_xi.tail<3>() - kBody).norm();
+  };
+  RegistrationConfig weighted = fine();
+  weighted.surface_sigma_m = 0.2;
+  const double weighted_m = error_m(weighted), unweighted_m = error_m(fine());
+  EXPECT_LT(weighted_m, 0.03) << "unweighted " << unweighted_m;
+  EXPECT_GT(unweighted_m, 2.0 * weighted_m);
 }
 
 TEST(RegistrationPreprocess, DropsLowQualityDownsamplesAndRemovesOutliers) {

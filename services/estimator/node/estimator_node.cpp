@@ -161,6 +161,9 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
         ml.id(static_cast<unsigned long long>(l.id));
         ml.p_L(to_msg(l.p_L));
         ml.quality(static_cast<float>(l.quality));
+        const Eigen::Matrix3d& c = l.cov_L;
+        ml.cov_L({static_cast<float>(c(0, 0)), static_cast<float>(c(0, 1)), static_cast<float>(c(0, 2)),
+                  static_cast<float>(c(1, 1)), static_cast<float>(c(1, 2)), static_cast<float>(c(2, 2))});
         lm.landmarks().push_back(ml);
       }
       // Once in W, the keyframe's covariance lets registration gate a correction by the estimator's own uncertainty.

@@ -116,7 +116,12 @@ void RegistrationNode::serve(const Pending& p) {
   source.T_LB = dds::from_msg(m.T_LB());
   source.T_WL = dds::from_msg(m.T_WL());
   source.landmarks.reserve(m.landmarks().size());
-  for (const auto& l : m.landmarks()) source.landmarks.push_back({dds::from_msg(l.p_L()), l.quality()});
+  for (const auto& l : m.landmarks()) {
+    const auto& c = l.cov_L();  // upper triangle xx xy xz yy yz zz [m^2]
+    Eigen::Matrix3d cov;
+    cov << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
+    source.landmarks.push_back({dds::from_msg(l.p_L()), l.quality(), cov});
+  }
   msg::Registration out;
   out.vehicle_id(m.vehicle_id());
   out.keyframe_stamp_ns(m.keyframe_stamp_ns());

@@ -7,6 +7,15 @@
 #include "twinslam/core/error.hpp"
 
 namespace twinslam::estimator {
+namespace {
+
+bool at_least_as_good(const LandmarkEstimate& a, const LandmarkEstimate& b) {
+  const double ta = a.cov_L.trace(), tb = b.cov_L.trace();
+  if (ta > 0.0 && tb > 0.0) return ta <= tb;
+  return a.quality >= b.quality;
+}
+
+}  // namespace
 
 void LandmarkHorizonConfig::validate(const std::string& source) const {
   const auto fail = [&](const char* key, const std::string& what) {
@@ -24,9 +33,10 @@ std::vector<LandmarkEstimate> LandmarkHorizon::update(std::int64_t stamp_ns, con
   for (const LandmarkEstimate& l : window) {
     // Remember the estimate from when the landmark was best observed: its quality falls as the keyframes that saw it
     // leave the window (two observations left: quality <= 0.25), so its last report before leaving is its worst,
-    // though the position is as good as when it had all of them.
+    // though the position is as good as when it had all of them. With covariances the best is the most certain one
+    // (quality saturates at 5 deg of parallax, which leaves a point 50 m away 1-2 m deep).
     auto [it, added] = seen_.try_emplace(l.id, Seen{l, l, stamp_ns});
-    if (!added && l.quality >= it->second.best.quality) it->second.best = l;
+    if (!added && at_least_as_good(l, it->second.best)) it->second.best = l;
     it->second.current = l;
     it->second.last_stamp_ns = stamp_ns;
   }

@@ -186,6 +186,12 @@ std::vector<LandmarkEstimate> window_landmarks(const WindowState& s) {
     const double q_parallax = std::min(1.0, parallax_deg / 5.0);
     const double q_error = std::clamp(1.0 - lm.mean_error_px / threshold, 0.0, 1.0);
     e.quality = q_obs * q_parallax * q_error;
+    std::vector<Eigen::Vector3d> centres;
+    centres.reserve(observers.size());
+    for (const WindowFrame* f : observers) centres.push_back((f->T_LB() * s.config.T_BC).translation());
+    const Eigen::Isometry3d T_LCa = anchor->T_LB() * s.config.T_BC;
+    e.cov_L = landmark_covariance_L(T_LCa.translation(), (T_LCa.linear() * lm.lm.f_Ca).normalized(), lm.rho, centres,
+                                    s.config.pixel_sigma / s.config.focal_px);
     out.push_back(e);
   }
   return out;

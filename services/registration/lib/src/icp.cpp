@@ -21,19 +21,22 @@ struct Pose {
 
 // The nearest twin point of every source point within the gate, in source order. The searches are independent
 // (in parallel on `threads`); the list is then compacted in order, so it does not depend on the thread count.
-std::vector<Correspondence> associate(const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
-                                      const Eigen::Vector3d& c, const Pose& pose, double gate, int threads) {
+std::vector<Correspondence> associate(const RegistrationConfig& config, const TwinTileIndex& index,
+                                      const std::vector<Eigen::Vector3d>& p_W, const std::vector<Eigen::Matrix3d>& cov_W,
+                                      const Eigen::Vector3d& c, const Pose& pose, double gate) {
   std::vector<Correspondence> slot(p_W.size());
   std::vector<char> found(p_W.size(), 0);
   const auto n = static_cast<std::ptrdiff_t>(p_W.size());
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+#pragma omp parallel for num_threads(config.threads) schedule(static) if (config.threads > 1)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const Eigen::Vector3d a = pose.R * (p_W[k] - c) + pose.t;
     const auto m = index.nearest(c + a, gate);
     if (!m) continue;
     const Eigen::Vector3d b = m->p_W - c;
-    slot[k] = {a, b, m->n_W, m->n_W.dot(a - b), m->distance_m};
+    // The landmark's covariance turns with the correction: n^T R C R^T n.
+    const double w = cov_W.empty() ? 1.0 : residual_weight(config, cov_W[k], pose.R.transpose() * m->n_W);
+    slot[k] = {a, b, m->n_W, m->n_W.dot(a - b), m->distance_m, w};
     found[k] = 1;
   }
   std::vector<Correspondence> out;
@@ -50,11 +53,12 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
-// Robust sigma of the correspondence distances (drives the gate) or of the plane residuals (inliers, RMSE).
+// Robust sigma of the correspondence distances (drives the gate) or of the weighted plane residuals sqrt(w) r
+// (inliers, the adaptive information).
 double robust_sigma(const std::vector<Correspondence>& corr, bool plane) {
   std::vector<double> v;
   v.reserve(corr.size());
-  for (const Correspondence& k : corr) v.push_back(plane ? std::abs(k.residual) : k.distance);
+  for (const Correspondence& k : corr) v.push_back(plane ? std::sqrt(k.weight) * std::abs(k.residual) : k.distance);
   return kMadToSigma * median(std::move(v));
 }
 
@@ -70,7 +74,7 @@ Vector6d gauss_newton_step(const std::vector<Correspondence>& corr, double kerne
     Vector6d J;
     J << k.a.cross(k.n), k.n;
     const double d = k2 + k.residual * k.residual;
-    const double w = k2 * k2 / (d * d);  // Geman-McClure: rho'(r) / r, 1 at r = 0
+    const double w = k.weight * k2 * k2 / (d * d);  // Geman-McClure: rho'(r) / r, 1 at r = 0; times w_j
     JtJ.noalias() += w * J * J.transpose();
     Jtr.noalias() += w * J * k.residual;
     radius_sq += k.a.squaredNorm();
@@ -110,7 +114,7 @@ void finish(const RegistrationConfig& config, const std::vector<Correspondence>&
   out.sigma_m = std::max(robust_sigma(corr, true), 1e-9);
   double sum_sq = 0.0;
   for (const Correspondence& k : corr) {
-    if (std::abs(k.residual) > config.threshold_sigmas * out.sigma_m) continue;
+    if (std::sqrt(k.weight) * std::abs(k.residual) > config.threshold_sigmas * out.sigma_m) continue;
     out.inliers.push_back(k);
     sum_sq += k.residual * k.residual;
   }
@@ -122,6 +126,12 @@ void finish(const RegistrationConfig& config, const std::vector<Correspondence>&
 
 }  // namespace
 
+double residual_weight(const RegistrationConfig& config, const Eigen::Matrix3d& cov_W, const Eigen::Vector3d& n_W) {
+  const double surface_sq = config.surface_sigma_m * config.surface_sigma_m;
+  if (!(surface_sq > 0.0)) return 1.0;  // surface_sigma_m 0: the landmarks' covariances are ignored
+  return surface_sq / (surface_sq + std::max(0.0, n_W.dot(cov_W * n_W)));
+}
+
 Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp,
                                    const Eigen::Vector3d& pivot_W) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -131,7 +141,8 @@ Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vecto
 }
 
 IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
-                  const Eigen::Vector3d& pivot_W, const Eigen::Matrix3d& dR0) {
+                  const std::vector<Eigen::Matrix3d>& cov_W, const Eigen::Vector3d& pivot_W,
+                  const Eigen::Matrix3d& dR0) {
   IcpResult out;
   out.pivot_W = pivot_W;
   Pose pose;
@@ -144,7 +155,7 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
   std::vector<Correspondence> corr;
   Vector6d x = Vector6d::Zero(), x_prev = Vector6d::Constant(std::numeric_limits<double>::infinity());
   for (int it = 1; it <= config.max_iterations; ++it) {
-    corr = associate(index, p_W, pivot_W, pose, gate, config.threads);
+    corr = associate(config, index, p_W, cov_W, pivot_W, pose, gate);
     if (corr.size() < 6) break;  // nothing to solve for: not converged
     // KISS-ICP's adaptive threshold: the gate follows 3 sigma of the distances (never growing, never below the
     // floor), and the kernel scale is that sigma, so far correspondences lose weight smoothly as alignment improves.
@@ -168,7 +179,7 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
     x_prev = x;
   }
   std::vector<Correspondence> last = out.converged ? carry(std::move(corr), x, gate)
-                                                  : associate(index, p_W, pivot_W, pose, gate, config.threads);
+                                                  : associate(config, index, p_W, cov_W, pivot_W, pose, gate);
   finish(config, last, pose, gate, out);
   return out;
 }

@@ -9,12 +9,13 @@
 namespace twinslam::registration {
 namespace {
 
-// Eigen-analysis of Hn = S H S / N (ascending); fills eigenvalues, directions, zeroed, and returns the information
-// with the zeroed directions removed: S^-1 (U L' U^T) S^-1 * N, i.e. H itself when nothing is zeroed.
-Matrix6d analyse(const RegistrationConfig& config, std::size_t n, Information& info) {
+// Eigen-analysis of Hn = S H_w S / n, n the summed weight (ascending); fills eigenvalues, directions, zeroed, and
+// returns the information with the zeroed directions removed: S^-1 (U L' U^T) S^-1 * n, i.e. H_w itself when nothing
+// is zeroed.
+Matrix6d analyse(const RegistrationConfig& config, double n, Information& info) {
   Vector6d s;
   s << Eigen::Vector3d::Constant(1.0 / info.length_scale_m), Eigen::Vector3d::Ones();
-  const Matrix6d Hn = s.asDiagonal() * info.H * s.asDiagonal() / static_cast<double>(n);
+  const Matrix6d Hn = s.asDiagonal() * info.H_weighted * s.asDiagonal() / n;
   const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(0.5 * (Hn + Hn.transpose()));
   info.eigenvalues = eig.eigenvalues();
   Vector6d kept = info.eigenvalues;
@@ -28,17 +29,17 @@ Matrix6d analyse(const RegistrationConfig& config, std::size_t n, Information& i
   }
   const Matrix6d Hk = eig.eigenvectors() * kept.asDiagonal() * eig.eigenvectors().transpose();
   const Vector6d s_inv = s.cwiseInverse();
-  return s_inv.asDiagonal() * Hk * s_inv.asDiagonal() * static_cast<double>(n);
+  return s_inv.asDiagonal() * Hk * s_inv.asDiagonal() * n;
 }
 
 }  // namespace
 
-Matrix6d registration_hessian(const std::vector<Correspondence>& inliers) {
+Matrix6d registration_hessian(const std::vector<Correspondence>& inliers, bool weighted) {
   Matrix6d H = Matrix6d::Zero();
   for (const Correspondence& k : inliers) {
     Vector6d A;  // eq. (9) has A_j = -[(a x n)^T, n^T]; the sign cancels in A^T A
     A << k.a.cross(k.n), k.n;
-    H.noalias() += A * A.transpose();
+    H.noalias() += (weighted ? k.weight : 1.0) * A * A.transpose();
   }
   return 0.5 * (H + H.transpose());  // Eigen's product kernel is not bit-symmetric; the factor must be
 }
@@ -48,10 +49,14 @@ Information compute_information(const RegistrationConfig& config, const std::vec
   Information info;
   if (inliers.empty()) return info;
   info.H = registration_hessian(inliers);
-  double radius_sq = 0.0;
-  for (const Correspondence& k : inliers) radius_sq += k.a.squaredNorm();
+  info.H_weighted = registration_hessian(inliers, true);
+  double radius_sq = 0.0, weight = 0.0;
+  for (const Correspondence& k : inliers) {
+    radius_sq += k.a.squaredNorm();
+    weight += k.weight;
+  }
   info.length_scale_m = std::max(1.0, std::sqrt(radius_sq / static_cast<double>(inliers.size())));
-  const Matrix6d H_kept = analyse(config, inliers.size(), info);
+  const Matrix6d H_kept = analyse(config, std::max(weight, 1e-12), info);
   switch (config.weights) {
     case WeightMode::kPaper:
       info.sigma_sq = info.H.trace();

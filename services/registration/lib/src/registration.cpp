@@ -126,7 +126,7 @@ RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTi
   const auto t1 = Clock::now();
   std::optional<double> heading_sigma_deg;
   if (prior_covariance) heading_sigma_deg = std::sqrt((*prior_covariance)(2, 2)) * 180.0 / M_PI;  // about W's z
-  const YawSearchResult search = run_icp_with_yaw_search(config, index, cloud.p_W, cloud.p_WB, heading_sigma_deg);
+  const YawSearchResult search = run_icp_with_yaw_search(config, index, cloud.p_W, cloud.cov_W, cloud.p_WB, heading_sigma_deg);
   const IcpResult& icp = search.icp;
   r.time.icp_ms = ms_since(t1);
   r.yaw_starts = search.starts;

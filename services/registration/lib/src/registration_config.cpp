@@ -43,6 +43,7 @@ const std::vector<Key>& keys() {
       {"outlier_neighbors", &C::outlier_neighbors},
       {"outlier_stddev", &C::outlier_stddev},
       {"min_points", &C::min_points},
+      {"surface_sigma_m", &C::surface_sigma_m},
       {"threads", &C::threads},
       {"max_iterations", &C::max_iterations},
       {"initial_threshold_m", &C::initial_threshold_m},
@@ -116,6 +117,7 @@ void RegistrationConfig::validate(const std::string& s) const {
         outlier_neighbors);
   check(pos(outlier_stddev), s, "outlier_stddev", "must be > 0", outlier_stddev);
   check(min_points >= 6, s, "min_points", "must be >= 6 (6 unknowns)", min_points);
+  check(nonneg(surface_sigma_m), s, "surface_sigma_m", "must be >= 0 m", surface_sigma_m);
   check(threads >= 1 && threads <= 256, s, "threads", "must be in [1, 256]", threads);
   check(max_iterations >= 1, s, "max_iterations", "must be >= 1", max_iterations);
   check(pos(initial_threshold_m), s, "initial_threshold_m", "must be > 0 m", initial_threshold_m);

@@ -13,6 +13,7 @@
 // is marginalized, as VINS-Mono does when it slides the window.
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -40,6 +41,16 @@ Eigen::Vector3d point_in_local(const Eigen::Isometry3d& T_LBa, const Eigen::Isom
 // front of C_a along f_Ca (depth <= 0).
 std::optional<double> inverse_depth_along(const Eigen::Isometry3d& T_LBa, const Eigen::Isometry3d& T_BC,
                                           const Eigen::Vector3d& f_Ca, const Eigen::Vector3d& p_L);
+
+// Covariance [m^2] in L of the point p_L = c_a + u_a / rho of a landmark (c_a: anchor camera centre, u_a: unit anchor
+// ray, both in L) from the bearing noise `bearing_sigma_rad` of its observations from the camera centres
+// `observers_L`, the poses taken as known. Along the ray: sigma_depth = sigma_rho / rho^2 with
+// 1 / sigma_rho^2 = sum_k |d b_k / d rho|^2 / sigma_b^2, where b_k is the unit bearing from camera k and
+// |d b_k / d rho| = |(I - b_k b_k^T) u_a| / (rho^2 |p - c_k|) (zero for the anchor itself); two cameras a baseline b
+// apart, square to the ray at depth d, give the familiar sigma_depth = d^2 sigma_b / b. Across the ray: d sigma_b (the
+// anchor observation). Without parallax the depth sigma is capped at the depth itself.
+Eigen::Matrix3d landmark_covariance_L(const Eigen::Vector3d& c_a, const Eigen::Vector3d& u_a, double rho,
+                                      const std::vector<Eigen::Vector3d>& observers_L, double bearing_sigma_rad);
 
 // Moves `landmark` to a new anchor keyframe whose observation of it is f_Cn (unit bearing in the new anchor camera):
 // the current point estimate p_L is kept as well as the new ray allows (closest point on the ray). Empty when the point

@@ -19,6 +19,8 @@ struct LandmarkEstimate {
   std::int64_t id = -1;
   Eigen::Vector3d p_L = Eigen::Vector3d::Zero();  // [m]
   double quality = 0.0;                           // [0, 1]: observations, parallax, reprojection error
+  // Covariance of p_L [m^2] relative to the keyframes that observed it (landmark_covariance_L); zero: unknown.
+  Eigen::Matrix3d cov_L = Eigen::Matrix3d::Zero();
 };
 
 struct LandmarkHorizonConfig {

@@ -12,6 +12,12 @@
 //
 // Linearization (left perturbation): x' = Exp(w) (dR a + dp) + v ~ a' + w x a' + v, so dr_j/d(w, v) =
 // [(a'_j x n_j)^T, n_j^T]: the A_j of eq. (9) up to sign, in (rotation, translation) order.
+//
+// Weights. A landmark's residual has the variance of the twin surface (surface_sigma_m^2) plus its own along the
+// normal, n^T C_j n (the estimator's covariance of the landmark: its depth from a short baseline is poor). Each
+// residual is weighted by w_j = surface^2 / (surface^2 + n^T C_j n), 1 for a perfect landmark: the paper weighs every
+// landmark the same, and VIO depths 40 m away are metres off (measured on city-loops: median |depth error| 0.85 m at
+// 30-45 m, 0.15-0.2 m at 10-20 m).
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,7 +37,11 @@ struct Correspondence {
   Eigen::Vector3d n;      // twin normal (unit)
   double residual = 0.0;  // n . (a - b): the point-to-plane residual of eq. (2) [m]
   double distance = 0.0;  // |a - b| [m]
+  double weight = 1.0;    // w_j (see above) [-]
 };
+
+// Weight of a landmark with covariance `cov_W` (zero: unknown, weight 1) matched to a twin plane of normal `n_W`.
+double residual_weight(const RegistrationConfig& config, const Eigen::Matrix3d& cov_W, const Eigen::Vector3d& n_W);
 
 struct IcpResult {
   Eigen::Matrix3d dR = Eigen::Matrix3d::Identity();                // rotation about the pivot (see above)
@@ -41,8 +51,8 @@ struct IcpResult {
   int iterations = 0;
   bool converged = false;               // the last update was below the convergence thresholds
   double threshold_m = 0.0;             // the final correspondence gate [m]
-  double sigma_m = 0.0;                 // robust sigma of the final point-to-plane residuals [m]
-  std::vector<Correspondence> inliers;  // at the final correction: distance <= gate and |r| <= 3 sigma
+  double sigma_m = 0.0;                 // robust sigma of the final weighted residuals sqrt(w_j) r_j [m]
+  std::vector<Correspondence> inliers;  // at the final correction: distance <= gate and sqrt(w) |r| <= 3 sigma
   std::size_t correspondences = 0;      // at the final correction within the gate (inliers and the rest)
   double rmse_m = 0.0;                  // RMSE of the inliers' point-to-plane residuals (gamma of eq. 10) [m]
 };
@@ -51,8 +61,10 @@ struct IcpResult {
 Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp,
                                    const Eigen::Vector3d& pivot_W);
 
-// Starts at the correction dR0 about the pivot (identity: the estimator's T_WL as it is). Deterministic.
+// Starts at the correction dR0 about the pivot (identity: the estimator's T_WL as it is). cov_W: the covariance of
+// each p_W [m^2] (empty: unknown, every weight 1). Deterministic.
 IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
-                  const Eigen::Vector3d& pivot_W, const Eigen::Matrix3d& dR0 = Eigen::Matrix3d::Identity());
+                  const std::vector<Eigen::Matrix3d>& cov_W, const Eigen::Vector3d& pivot_W,
+                  const Eigen::Matrix3d& dR0 = Eigen::Matrix3d::Identity());
 
 }  // namespace twinslam::registration

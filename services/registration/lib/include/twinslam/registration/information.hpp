@@ -12,7 +12,8 @@
 // translation decoupled.
 //
 // H (eqs. 8-9) = sum_j A_j^T A_j over the inliers, A_j = [(a_j x n_j)^T, n_j^T] with a_j relative to c and a x n NOT
-// normalized: units [m^2] in the rotation block, [m] off-diagonal, [1] in the translation block.
+// normalized: units [m^2] in the rotation block, [m] off-diagonal, [1] in the translation block. The adaptive weighting
+// uses H_w = sum_j w_j A_j^T A_j with the residual weights of icp.hpp (each landmark's own uncertainty).
 #include <array>
 #include <vector>
 
@@ -23,11 +24,12 @@ namespace twinslam::registration {
 
 struct Information {
   Matrix6d H = Matrix6d::Zero();            // eq. (9), unweighted, (rotation, translation)
+  Matrix6d H_weighted = Matrix6d::Zero();   // sum w_j A_j^T A_j (adaptive), (rotation, translation)
   Matrix6d information = Matrix6d::Zero();  // the weight W_m of the selected mode, (rotation, translation)
-  // Eigen-analysis of the per-point normalized H: Hn = S H S / N, S = diag(1/L, 1/L, 1/L, 1, 1, 1), L = RMS distance
-  // of the inliers from c. Scaling rotation by L makes the blocks comparable (a rotation w moves points by ~L |w|), and
-  // dividing by N makes the value a per-point observability in [0, 1] (translation: the mean of n n^T), independent of
-  // how many landmarks the keyframe has.
+  // Eigen-analysis of the per-point normalized H_w: Hn = S H_w S / sum w_j, S = diag(1/L, 1/L, 1/L, 1, 1, 1), L = RMS
+  // distance of the inliers from c. Scaling rotation by L makes the blocks comparable (a rotation w moves points by
+  // ~L |w|), and dividing by the summed weight makes the value a per-point observability in [0, 1] (translation: the
+  // weighted mean of n n^T), independent of how many landmarks the keyframe has.
   Vector6d eigenvalues = Vector6d::Zero();  // of Hn, ascending [-]
   Matrix6d directions = Matrix6d::Zero();   // column i: unit direction in xi space (= S u_i normalized) of eigenvalue i
   std::array<bool, 6> zeroed{};             // eigenvalue i < degeneracy_threshold
@@ -36,15 +38,16 @@ struct Information {
   double sigma_sq = 0.0;                    // paper: trace(H) (eq. 10's sigma^2); adaptive: the residual variance [m^2]
 };
 
-// eq. (8)-(9): sum of A_j^T A_j over the correspondences.
-Matrix6d registration_hessian(const std::vector<Correspondence>& inliers);
+// eq. (8)-(9): sum of A_j^T A_j over the correspondences; `weighted`: of w_j A_j^T A_j.
+Matrix6d registration_hessian(const std::vector<Correspondence>& inliers, bool weighted = false);
 
 // Weights `inliers` (at the converged correction) as config.weights says:
 //   paper:    beta / trace(H) * exp(-rmse^2 / 2) * H                                       (eq. 10 as written)
-//   adaptive: H / sigma^2 with sigma^2 = max(robust_sigma, min_sigma)^2 * correlation_inflation, and the eigen-
+//   adaptive: H_w / sigma^2 with sigma^2 = max(robust_sigma, min_sigma)^2 * correlation_inflation, and the eigen-
 //             directions of Hn below degeneracy_threshold removed (information exactly 0 along them)
 //   fixed:    diag(fixed_rotation_information x3, fixed_translation_information x3)
-// robust_sigma_m: the robust sigma of the inliers' residuals (IcpResult::sigma_m). Empty input gives all zeros.
+// robust_sigma_m: the robust sigma of the inliers' weighted residuals (IcpResult::sigma_m). Empty input gives all
+// zeros.
 Information compute_information(const RegistrationConfig& config, const std::vector<Correspondence>& inliers,
                                 double rmse_m, double robust_sigma_m);
 

@@ -18,6 +18,7 @@ namespace twinslam::registration {
 struct Landmark {
   Eigen::Vector3d p_L = Eigen::Vector3d::Zero();  // position in the estimator's local frame L [m]
   double quality = 1.0;                           // the estimator's confidence in [0, 1]
+  Eigen::Matrix3d cov_L = Eigen::Matrix3d::Zero();  // covariance of p_L [m^2] (LocalMap v2); zero: unknown
 };
 
 // What the estimator hands over for one keyframe.
@@ -29,6 +30,7 @@ struct SourceInput {
 
 struct SourceCloud {
   std::vector<Eigen::Vector3d> p_W;                // preprocessed landmarks in W with the guess: p_W = T_WL p_L [m]
+  std::vector<Eigen::Matrix3d> cov_W;              // ... their covariances in W [m^2] (a voxel's: of its centroid)
   Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();  // keyframe body position in W (T_WL T_LB): ICP's pivot [m]
   std::size_t input = 0, after_quality = 0, after_voxel = 0;  // counts after each step (p_W.size() is the last)
 };
@@ -40,7 +42,8 @@ struct SourceCloud {
 std::vector<std::size_t> statistical_inliers(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& origin,
                                              int neighbors, double stddev_mul, int threads = 1);
 
-// Throws InputError for a non-finite landmark or pose, or a quality outside [0, 1] (naming the landmark index).
+// Throws InputError for a non-finite landmark or pose, a quality outside [0, 1] or a covariance that is not finite,
+// symmetric and of non-negative diagonal (naming the landmark index).
 // Deterministic: the output order depends only on the input.
 SourceCloud preprocess(const RegistrationConfig& config, const SourceInput& input);
 

@@ -30,7 +30,8 @@ std::size_t yaw_support(const RegistrationConfig& config, const IcpResult& icp);
 
 // ICP from each start heading, rotated about the pivot (the keyframe body position). Deterministic.
 YawSearchResult run_icp_with_yaw_search(const RegistrationConfig& config, const TwinTileIndex& index,
-                                        const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector3d& pivot_W,
+                                        const std::vector<Eigen::Vector3d>& p_W,
+                                        const std::vector<Eigen::Matrix3d>& cov_W, const Eigen::Vector3d& pivot_W,
                                         std::optional<double> heading_sigma_deg);
 
 }  // namespace twinslam::registration
