@@ -87,6 +87,29 @@ TEST(LandmarkHorizon, BadConfigNamesTheKey) {
 namespace twinslam::estimator {
 namespace {
 
+TEST(LandmarkHorizon, RememberedLandmarksMoveWithTheWindowsKeyframes) {
+  // A fused registration moves the window 0.4 m north and turns it 2 deg: a landmark that left the window moves with
+  // it, as it would have had it stayed in the window. Without follow_window it stays where it was.
+  for (const bool follow : {true, false}) {
+    LandmarkHorizon h({.horizon_s = 10.0, .horizon_m = 100.0, .max_landmarks = 100, .follow_window = follow});
+    Eigen::Isometry3d k1 = Eigen::Isometry3d::Identity(), k2 = Eigen::Isometry3d::Identity();
+    k1.translation() << 10, 0, 0;
+    k2.translation() << 12, 0, 0;
+    h.follow_window({{1 * kSecond, k1}, {2 * kSecond, k2}});
+    h.update(2 * kSecond, k2.translation(), {at(5, 30.0), at(6, 31.0)});
+    Eigen::Isometry3d moved(Eigen::Translation3d(0, 0.4, 0) * Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
+    Eigen::Isometry3d k3 = Eigen::Isometry3d::Identity();
+    k3.translation() << 14, 0, 0;
+    // Keyframe 1 left the window; keyframe 2, the oldest in both, moved.
+    h.follow_window({{2 * kSecond, moved * k2}, {3 * kSecond, k3}});
+    const auto out = h.update(3 * kSecond, k3.translation(), {at(6, 31.5)});
+    ASSERT_EQ(ids(out), (std::vector<std::int64_t>{5, 6}));
+    const Eigen::Vector3d expected = follow ? Eigen::Vector3d(moved * Eigen::Vector3d(30, 0, 0)) : Eigen::Vector3d(30, 0, 0);
+    EXPECT_LT((out[0].p_L - expected).norm(), 1e-12) << "follow_window " << follow;
+    EXPECT_DOUBLE_EQ(out[1].p_L.x(), 31.5);  // still in the window: the window's own estimate
+  }
+}
+
 TEST(LandmarkHorizon, WithCovariancesTheBestEstimateIsTheMostCertain) {
   // Quality saturates (5 deg of parallax) long before the depth is good far away: with covariances the remembered
   // estimate is the one with the smallest covariance, not the last at full quality.

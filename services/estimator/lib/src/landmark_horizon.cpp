@@ -28,6 +28,22 @@ void LandmarkHorizonConfig::validate(const std::string& source) const {
 
 LandmarkHorizon::LandmarkHorizon(const LandmarkHorizonConfig& config) : config_(config) { config_.validate(); }
 
+void LandmarkHorizon::follow_window(const std::map<std::int64_t, Eigen::Isometry3d>& keyframes_T_LB) {
+  if (config_.follow_window) {
+    for (const auto& [stamp, T_now] : keyframes_T_LB) {  // oldest first
+      const auto then = keyframes_.find(stamp);
+      if (then == keyframes_.end()) continue;
+      const Eigen::Isometry3d moved = T_now * then->second.inverse();
+      for (auto& [id, s] : seen_) {
+        s.current.p_L = moved * s.current.p_L;
+        s.best.p_L = moved * s.best.p_L;
+      }
+      break;
+    }
+  }
+  keyframes_ = keyframes_T_LB;
+}
+
 std::vector<LandmarkEstimate> LandmarkHorizon::update(std::int64_t stamp_ns, const Eigen::Vector3d& p_LB,
                                                       const std::vector<LandmarkEstimate>& window) {
   for (const LandmarkEstimate& l : window) {

@@ -81,7 +81,8 @@ void bind_sliding_window_config(yaml::Fields& fields, SlidingWindowConfig& confi
   fields.section("local_map")
       .number("horizon_s", config.local_map.horizon_s, "s")
       .number("horizon_m", config.local_map.horizon_m, "m")
-      .integer("max_landmarks", config.local_map.max_landmarks);
+      .integer("max_landmarks", config.local_map.max_landmarks)
+      .flag("follow_window", config.local_map.follow_window);
 }
 
 void validate_estimator_config(const SlidingWindowConfig& config, const std::string& file) {

@@ -325,6 +325,10 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
   FrameEstimate e = make_estimate(s, newest, EstimatorStatus::kTracking);
   if (newest.keyframe) {
     const Eigen::Isometry3d T_LB = newest.T_LB();
+    std::map<std::int64_t, Eigen::Isometry3d> keyframes;
+    for (const auto& f : s.frames)
+      if (f->keyframe) keyframes.emplace(f->stamp_ns, f->T_LB());
+    s.horizon.follow_window(keyframes);
     s.local_map = LocalMapEstimate{newest.stamp_ns, T_LB, e.T_WL,
                                    s.horizon.update(newest.stamp_ns, T_LB.translation(), window_landmarks(s))};
     if (static_cast<int>(s.frames.size()) > s.config.window_keyframes) marginalize_oldest(s);
