@@ -1,12 +1,16 @@
 // GlobalFusion (global_fusion.hpp): the GNSS alignment after a registration outage replaces the estimate only when
-// the fit is more certain than the estimate.
+// the fit is more certain than the estimate; a provisional GNSS alignment is declared once registrations have made
+// the heading certain.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <optional>
 #include <random>
 
 #include "position_provider.hpp"
 #include "sliding_window_sim.hpp"
 #include "twinslam/estimator/global_fusion.hpp"
+#include "twinslam/geometry/se3.hpp"
 
 namespace twinslam::estimator {
 namespace {
@@ -65,8 +69,80 @@ TEST(GlobalFusion, RealignsAfterAnOutageOnlyWhenTheGnssFitIsMoreCertainThanTheEs
   EXPECT_GE(gnss_only.alignments, 2u);
   // The estimate is held to 5 cm by another source: no fit of 1 m fixes beats it, so none replaces it.
   const GlobalFusionCounts anchored = fly(run, true);
-  EXPECT_EQ(anchored.alignments, 1u);
+  EXPECT_EQ(anchored.alignments - anchored.provisional_alignments, 1u);  // the converged fit, never replaced
   EXPECT_GE(anchored.realignments_declined, 1u);
+}
+
+struct Declaration {
+  std::optional<double> provisional_s, declared_s;  // since the first frame
+  double yaw_error_deg = 0.0;                       // of T_WL when declared (truth: L = W)
+  bool declared_before_registration = false;
+};
+
+// GNSS as in fly() (no anchor); with `registrations`, every keyframe's LocalMap is answered by a registration of the
+// true pose (0.05 m, 0.1 deg) as soon as T_WL is set, provisionally or not.
+Declaration declare(const SimRun& run, bool registrations) {
+  SlidingWindowConfig c;
+  c.T_BC = run.T_BC;
+  c.pixel_sigma = 0.5;
+  c.max_solver_time_s = 10.0;
+  SlidingWindowEstimator est(c);
+  GlobalFusionConfig g;
+  g.fuse_registrations = true;
+  g.align_from_gnss = true;
+  GlobalFusion fusion(est, g);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  est.initialize_next_frame(run.frames.front().truth);
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  information.diagonal() << Eigen::Vector3d::Constant(std::pow(180.0 / M_PI / 0.1, 2)), Eigen::Vector3d::Constant(400.0);
+  Declaration out;
+  std::size_t imu_next = 0;
+  for (std::size_t k = 0; k < run.frames.size(); ++k) {
+    const auto& f = run.frames[k];
+    const double t = 1e-9 * static_cast<double>(f.stamp_ns - run.frames.front().stamp_ns);
+    while (imu_next < run.imu.size() && run.imu[imu_next].stamp_ns <= f.stamp_ns + 5'000'000) {
+      est.add_imu(run.imu[imu_next++]);
+    }
+    if (k % 4 == 0) {
+      fusion.on_gnss(f.stamp_ns, f.truth.p_L + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)),
+                     Eigen::Matrix3d::Identity());
+    }
+    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
+    fusion.after_frame(e, est.local_map());
+    if (!out.provisional_s && fusion.counts().alignments > 0) out.provisional_s = t;
+    if (!out.declared_s && fusion.world_declared()) {
+      out.declared_s = t;
+      out.declared_before_registration = fusion.counts().registrations_accepted == 0;
+      const Eigen::Matrix3d R = est.world_alignment().linear();
+      out.yaw_error_deg = std::abs(std::atan2(R(1, 0), R(0, 0))) * 180.0 / M_PI;
+    }
+    const auto& map = est.local_map();
+    if (registrations && map && est.world_aligned()) {
+      const Eigen::Isometry3d truth = geometry::make_pose(f.truth.q_LB, f.truth.p_L);
+      const Eigen::Isometry3d correction = truth * (map->T_WL * map->T_LB).inverse();
+      fusion.on_registration(map->keyframe_stamp_ns, true, correction, information);
+    }
+  }
+  return out;
+}
+
+TEST(GlobalFusion, AProvisionalGnssAlignmentIsDeclaredOnceRegistrationsMakeTheHeadingCertain) {
+  const SimRun run = flight();
+  // GNSS alone: T_WL is set provisionally (heading sigma < 30 deg) but declared only when the fit converges (3 deg).
+  const Declaration gnss = declare(run, false);
+  ASSERT_TRUE(gnss.provisional_s && gnss.declared_s);
+  EXPECT_LT(*gnss.provisional_s, *gnss.declared_s);
+  EXPECT_TRUE(gnss.declared_before_registration);
+  // With registrations from the provisional alignment on: declared at the first keyframe after one, much earlier, and
+  // the heading is then that of the registrations, not the GNSS fit's.
+  const Declaration reg = declare(run, true);
+  ASSERT_TRUE(reg.provisional_s && reg.declared_s);
+  EXPECT_DOUBLE_EQ(*reg.provisional_s, *gnss.provisional_s);
+  EXPECT_LT(*reg.declared_s, *reg.provisional_s + 1.5);
+  EXPECT_LT(*reg.declared_s, *gnss.declared_s);
+  EXPECT_FALSE(reg.declared_before_registration);
+  EXPECT_LT(reg.yaw_error_deg, 0.3);
 }
 
 }  // namespace

@@ -21,12 +21,13 @@ Matrix6d prior_with_heading_sigma(double yaw_deg) {
 }
 
 TEST(YawSearch, StartsOnlyWhenTheHeadingIsUncertainWithinThreeSigmaAndTheCap) {
-  const RegistrationConfig c;  // min sigma 1 deg, step 2 deg, cap 10 deg
+  const RegistrationConfig c;  // min sigma 1 deg, step 2 deg, cap 45 deg
   EXPECT_EQ(yaw_starts_deg(c, std::nullopt), std::vector<double>{0.0});
   EXPECT_EQ(yaw_starts_deg(c, 0.9), std::vector<double>{0.0});
   EXPECT_EQ(yaw_starts_deg(c, 2.0), (std::vector<double>{0.0, -2.0, 2.0, -4.0, 4.0, -6.0, 6.0}));
-  EXPECT_EQ(yaw_starts_deg(c, 30.0).size(), 11u);  // +-10 deg
-  EXPECT_EQ(yaw_starts_deg(c, 30.0).back(), 10.0);
+  EXPECT_EQ(yaw_starts_deg(c, 10.0).size(), 31u);  // +-30 deg: 3 sigma
+  EXPECT_EQ(yaw_starts_deg(c, 30.0).size(), 45u);  // +-44 deg: the cap (a provisional GNSS alignment)
+  EXPECT_EQ(yaw_starts_deg(c, 30.0).back(), 44.0);
 }
 
 TEST(YawSearch, FindsAHeadingErrorPlainIcpDoesNotConvergeFrom) {
@@ -45,7 +46,7 @@ TEST(YawSearch, FindsAHeadingErrorPlainIcpDoesNotConvergeFrom) {
   EXPECT_EQ(plain.yaw_starts, 1);
   EXPECT_TRUE(!plain.accepted() || heading_error_deg(plain) > 1.0) << "plain ICP found it: the test shows nothing";
   const RegistrationResult searched = register_cloud(c, index, in, prior_with_heading_sigma(4.0));
-  EXPECT_EQ(searched.yaw_starts, 11);
+  EXPECT_EQ(searched.yaw_starts, 13);  // +-12 deg: 3 sigma
   ASSERT_TRUE(searched.accepted()) << searched.reason;
   EXPECT_LT(heading_error_deg(searched), 0.05);
   EXPECT_LT((searched.correction_W * (error * kBody) - kBody).norm(), 0.02);

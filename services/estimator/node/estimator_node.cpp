@@ -71,6 +71,7 @@ void EstimatorNode::report_fusion() {
   const std::pair<const char*, unsigned long long> now[] = {
       {"alignments", f.alignments},
       {"realignments_declined", f.realignments_declined},
+      {"provisional_alignments", f.provisional_alignments},
       {"registrations_fused", r.attached + r.reattached},
       {"registrations_reattached", r.reattached},
       {"registrations_unmatched", r.unmatched},
@@ -131,9 +132,9 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
     odom.vehicle_id(m.vehicle_id());
     odom.stamp_ns(m.stamp_ns());
     odom.seq(odom_seq_++);
-    // T_WB = T_WL T_LB in W once some global term has acted on T_WL (ODOM_ALIGNED); before that T_WL is the
-    // identity guess and T_WB equals T_LB.
-    const bool aligned = e.aligned && e.status == EstimatorStatus::kTracking;
+    // T_WB = T_WL T_LB in W once the alignment is declared (ODOM_ALIGNED: global_fusion.hpp). Before that T_WL is
+    // the identity guess (T_WB equals T_LB) or a provisional alignment that registration is still refining.
+    const bool aligned = e.aligned && fusion_.world_declared() && e.status == EstimatorStatus::kTracking;
     odom.status(aligned ? msg::ODOM_ALIGNED : to_msg(e.status));
     odom.T_LB(to_msg(e.T_LB));
     odom.T_WL(to_msg(e.T_WL));

@@ -11,6 +11,14 @@ namespace {
 constexpr double kDegToRad = 0.017453292519943295;
 constexpr std::size_t kPublishedKept = 400;  // LocalMaps remembered for late registrations (~2 min of keyframes)
 
+// The sigmas of the T_WL prior a GNSS fit sets: the fit's own (largest position sigma, heading) times the scale.
+WorldAlignmentSigmas prior_sigmas(const GlobalFusionConfig& config, const WorldAlignment4Dof& fit) {
+  WorldAlignmentSigmas sigmas;
+  sigmas.position_m = config.gnss_alignment_sigma_scale * std::sqrt(fit.covariance.topLeftCorner<3, 3>().diagonal().maxCoeff());
+  sigmas.yaw_rad = config.gnss_alignment_sigma_scale * fit.yaw_sigma_deg * kDegToRad;
+  return sigmas;
+}
+
 }  // namespace
 
 void GlobalFusionConfig::validate() const {
@@ -18,6 +26,9 @@ void GlobalFusionConfig::validate() const {
       {"initial_pose_position_sigma_m", initial_pose_position_sigma_m},
       {"initial_pose_yaw_sigma_deg", initial_pose_yaw_sigma_deg},
       {"gnss_alignment_sigma_scale", gnss_alignment_sigma_scale}};
+  if (!(provisional_yaw_sigma_deg >= 0.0) || !std::isfinite(provisional_yaw_sigma_deg)) {
+    throw InputError("global fusion: provisional_yaw_sigma_deg must be >= 0");
+  }
   for (const auto& [name, v] : positive) {
     if (!(v > 0.0) || !std::isfinite(v)) throw InputError(std::string("global fusion: ") + name + " must be > 0");
   }
@@ -55,18 +66,27 @@ void GlobalFusion::on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, co
   } catch (const InputError&) {
     return;  // a fix without a usable covariance: counted as received, not paired
   }
-  const bool outage = aligned_ && config_.realign_after_s > 0.0 && last_accepted_ns_ >= 0 &&
+  const bool outage = declared_ && config_.realign_after_s > 0.0 && last_accepted_ns_ >= 0 &&
                       1e-9 * static_cast<double>(stamp_ns - last_accepted_ns_) > config_.realign_after_s;
-  if (!aligned_ || outage) try_align(stamp_ns);
+  if (!declared_ || outage) try_align(stamp_ns);
 }
 
 void GlobalFusion::try_align(std::int64_t stamp_ns) {
   const auto a = aligner_.solve();
-  if (!a || !a->converged) return;
-  WorldAlignmentSigmas sigmas;
-  sigmas.position_m = config_.gnss_alignment_sigma_scale * std::sqrt(a->covariance.topLeftCorner<3, 3>().diagonal().maxCoeff());
-  sigmas.yaw_rad = config_.gnss_alignment_sigma_scale * a->yaw_sigma_deg * kDegToRad;
-  if (aligned_ && !realignment_helps(sigmas)) {
+  if (!a) return;
+  if (!declared_) {
+    // Not in W yet. Once a registration has acted on a provisional T_WL the window knows its heading better than any
+    // GNSS fit (check_declaration decides). Before that, a converged fit is used and declared, and a fit that is only
+    // provisional starts T_WL, or replaces a provisional one it is at least twice as certain as in heading.
+    if (aligned_ && counts_.registrations_accepted > accepted_at_provisional_) return;
+    const double limit = aligned_ ? 0.5 * provisional_yaw_sigma_deg_ : config_.provisional_yaw_sigma_deg;
+    const bool usable = a->pairs >= static_cast<std::size_t>(config_.aligner.min_pairs) &&
+                        a->span_m >= config_.aligner.min_span_m && a->yaw_sigma_deg < limit;
+    if (a->converged || usable) set_from_fit(*a, stamp_ns, a->converged);
+    return;
+  }
+  if (!a->converged) return;
+  if (!realignment_helps(prior_sigmas(config_, *a))) {
     // Measured on city-loops: after 40 s without an accepted registration the estimate was 0.8 m / 0.06 deg off,
     // and replacing its T_WL by the fit of 150 s of fixes (biased by slowly varying GNSS errors) moved it to
     // 1.3 m / 1.5 deg. Only a fit more certain than the estimate replaces it; the next try is realign_after_s later.
@@ -74,12 +94,33 @@ void GlobalFusion::try_align(std::int64_t stamp_ns) {
     last_accepted_ns_ = stamp_ns;
     return;
   }
-  estimator_.set_world_alignment(a->T_WL, sigmas);
-  last_alignment_ = a;
+  set_from_fit(*a, stamp_ns, true);
+}
+
+void GlobalFusion::set_from_fit(const WorldAlignment4Dof& fit, std::int64_t stamp_ns, bool declared) {
+  estimator_.set_world_alignment(fit.T_WL, prior_sigmas(config_, fit));
+  last_alignment_ = fit;
   aligned_ = true;
+  declared_ = declared;
   last_accepted_ns_ = stamp_ns;
   ++counts_.alignments;
-  aligner_.clear();  // a later re-alignment uses fixes after this one only
+  if (declared) {
+    aligner_.clear();  // a later re-alignment uses fixes after this one only
+  } else {
+    ++counts_.provisional_alignments;  // the fixes stay: a better fit of more of them may replace it
+    provisional_yaw_sigma_deg_ = fit.yaw_sigma_deg;
+    accepted_at_provisional_ = counts_.registrations_accepted;
+  }
+}
+
+void GlobalFusion::check_declaration() {
+  if (!aligned_ || declared_ || counts_.registrations_accepted == accepted_at_provisional_) return;
+  const auto cov = estimator_.world_alignment_covariance();  // [p_WL, yaw_WL]
+  if (!cov) return;
+  const double yaw_sigma_deg = std::sqrt(std::max((*cov)(3, 3), 0.0)) / kDegToRad;
+  if (yaw_sigma_deg > config_.aligner.converged_yaw_sigma_deg) return;
+  declared_ = true;
+  aligner_.clear();
 }
 
 bool GlobalFusion::realignment_helps(const WorldAlignmentSigmas& fit) const {
@@ -118,7 +159,10 @@ void GlobalFusion::after_frame(const FrameEstimate& estimate, const std::optiona
   last_frame_ = estimate;
   if (estimate.status != EstimatorStatus::kTracking) {
     aligned_ = estimator_.world_aligned();  // a reset forgets T_WL: align again
-    if (!aligned_) aligner_.clear();
+    if (!aligned_) {
+      aligner_.clear();
+      declared_ = false;
+    }
     return;
   }
   if (initial_pose_ && !aligned_) {
@@ -131,10 +175,13 @@ void GlobalFusion::after_frame(const FrameEstimate& estimate, const std::optiona
     estimator_.set_world_alignment(T_WL, {config_.initial_pose_position_sigma_m,
                                           config_.initial_pose_yaw_sigma_deg * kDegToRad});
     aligned_ = true;
+    declared_ = config_.initial_pose_yaw_sigma_deg <= config_.aligner.converged_yaw_sigma_deg;
+    accepted_at_provisional_ = counts_.registrations_accepted;
     last_accepted_ns_ = estimate.stamp_ns;
     ++counts_.alignments;
   }
   if (local_map) {
+    check_declaration();  // a keyframe: the registrations of earlier ones are in the window
     published_[local_map->keyframe_stamp_ns] = {local_map->T_LB, local_map->T_WL};
     if (published_.size() > kPublishedKept) published_.erase(published_.begin());
   }

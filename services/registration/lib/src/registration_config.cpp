@@ -128,7 +128,7 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(pos(convergence_rotation_deg), s, "convergence_rotation_deg", "must be > 0 deg", convergence_rotation_deg);
   check(pos(yaw_search_min_sigma_deg), s, "yaw_search_min_sigma_deg", "must be > 0 deg", yaw_search_min_sigma_deg);
   check(pos(yaw_search_step_deg), s, "yaw_search_step_deg", "must be > 0 deg", yaw_search_step_deg);
-  check(nonneg(yaw_search_max_deg) && yaw_search_max_deg <= 45.0, s, "yaw_search_max_deg", "must lie in [0, 45] deg",
+  check(nonneg(yaw_search_max_deg) && yaw_search_max_deg <= 90.0, s, "yaw_search_max_deg", "must lie in [0, 90] deg",
         yaw_search_max_deg);
   check(std::isfinite(yaw_search_ambiguity) && yaw_search_ambiguity > 0.0 && yaw_search_ambiguity <= 1.0, s,
         "yaw_search_ambiguity", "must lie in (0, 1]", yaw_search_ambiguity);

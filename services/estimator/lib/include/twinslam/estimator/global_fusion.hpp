@@ -1,11 +1,16 @@
 #pragma once
 // What the estimator does with global inputs (paper Sec. III-C/D), free of DDS: the node converts messages and calls
 // this in sensor-time order (sensor_worker.hpp).
-//  - GNSS fixes (in W) pair with the estimated positions to find the initial alignment T_WL (eq. 11, WorldAligner);
-//    once its heading sigma is small enough, set_world_alignment() starts the window's T_WL from it. After a long
-//    registration outage (drift grows) the alignment is found again from recent fixes (paper Sec. V) - applied only
-//    when that fit is more certain than the estimate it would replace.
-//  - Without GNSS, an initial pose given by the user ("E N U YAW", the paper's "set manually") starts it.
+//  - GNSS fixes (in W) pair with the estimated positions to find the initial alignment T_WL (eq. 11, WorldAligner).
+//    A fit whose heading sigma is below provisional_yaw_sigma_deg starts the window's T_WL provisionally, with the
+//    fit's sigmas: registration then searches the heading within them and its results refine T_WL (the paper uses
+//    registered positions in place of GNSS once registration succeeds, Sec. III-D). The alignment is *declared*
+//    (Odometry in W) when the heading sigma of T_WL is below aligner.converged_yaw_sigma_deg - of the GNSS fit, or of
+//    the window's own estimate once registrations have acted on it (Boche et al. 2022's convergence test). After a
+//    long registration outage (drift grows) the alignment is found again from recent fixes (paper Sec. V) - applied
+//    only when that fit is more certain than the estimate it would replace.
+//  - Without GNSS, an initial pose given by the user ("E N U YAW", the paper's "set manually") starts it, declared
+//    at once if its heading sigma passes the same test, else when registrations have made it pass.
 //  - Accepted map registrations become MapRegistration terms (map_registration_provider.hpp) on their keyframe,
 //    read against the keyframe pose and T_WL that were published with the LocalMap they answer.
 #include <cstdint>
@@ -27,6 +32,9 @@ struct GlobalFusionConfig {
   double initial_pose_position_sigma_m = 5.0;  // prior of a user-given initial pose [m]
   double initial_pose_yaw_sigma_deg = 5.0;     // [deg]
   double gnss_alignment_sigma_scale = 1.0;     // the T_WL prior's sigmas = the aligner's sigmas times this [1]
+  // A GNSS fit with a heading sigma below this starts T_WL provisionally (for registration to refine; Odometry stays
+  // in L until declared) [deg]; 0: only a converged fit (aligner.converged_yaw_sigma_deg) starts it
+  double provisional_yaw_sigma_deg = 30.0;
   WorldAlignerConfig aligner;
   MapRegistrationProviderConfig registration;
   void validate() const;  // throws twinslam::InputError naming the field
@@ -41,7 +49,8 @@ struct InitialPose {
 struct GlobalFusionCounts {
   unsigned long long gnss_in = 0, gnss_paired = 0, alignments = 0, registrations_in = 0, registrations_accepted = 0,
                      registrations_unknown_keyframe = 0, registrations_before_alignment = 0,
-                     realignments_declined = 0;  // after an outage, the GNSS fit was less certain than the estimate
+                     realignments_declined = 0,  // after an outage, the GNSS fit was less certain than the estimate
+                     provisional_alignments = 0;  // T_WL set (or replaced) from a fit not yet converged
 };
 
 class GlobalFusion {
@@ -61,9 +70,15 @@ class GlobalFusion {
   const GlobalFusionCounts& counts() const { return counts_; }
   const MapRegistrationCounts& registration_counts() const { return provider_->counts(); }
   std::optional<WorldAlignment4Dof> last_alignment() const { return last_alignment_; }
+  // T_WL is set and its heading is certain enough to call T_WB a pose in W (Odometry ODOM_ALIGNED).
+  bool world_declared() const { return aligned_ && declared_; }
 
  private:
   void try_align(std::int64_t stamp_ns);
+  // Sets T_WL from a GNSS fit (declared if converged) and notes when.
+  void set_from_fit(const WorldAlignment4Dof& fit, std::int64_t stamp_ns, bool declared);
+  // Provisional alignment refined by registrations: declared once the window's own heading sigma passes the test.
+  void check_declaration();
   // After an outage: whether the fit (sigmas of the T_WL prior it would set) is more certain, in heading and in
   // horizontal position, than the estimator's own newest pose in W.
   bool realignment_helps(const WorldAlignmentSigmas& fit) const;
@@ -77,7 +92,10 @@ class GlobalFusion {
   std::optional<FrameEstimate> last_frame_;
   std::map<std::int64_t, std::pair<Eigen::Isometry3d, Eigen::Isometry3d>> published_;  // stamp -> (T_LB, T_WL)
   std::int64_t last_accepted_ns_ = -1;  // last accepted registration (or alignment) [sensor time]
-  bool aligned_ = false;
+  bool aligned_ = false;   // T_WL is set (provisionally or declared)
+  bool declared_ = false;  // ... and certain enough to output poses in W
+  double provisional_yaw_sigma_deg_ = 0.0;      // heading sigma of the provisional T_WL prior [deg]
+  unsigned long long accepted_at_provisional_ = 0;  // registrations_accepted when T_WL was last set provisionally
   GlobalFusionCounts counts_;
 };
 

@@ -45,7 +45,8 @@ struct RegistrationConfig {
   // yaw_search_max_deg), and the start whose result the twin supports best wins.
   double yaw_search_min_sigma_deg = 1.0;  // [deg] heading sigma above which the search runs
   double yaw_search_step_deg = 2.0;       // [deg] spacing of the start headings (< the ~3 deg ICP converges from)
-  double yaw_search_max_deg = 10.0;       // [deg] the starts span at most this either side
+  double yaw_search_max_deg = 45.0;       // [deg] the starts span at most this either side (a provisional GNSS
+                                          // alignment has a heading sigma up to 30 deg: 45 starts, ~0.1 s, once)
   double yaw_search_ambiguity = 0.9;      // a distinct heading with >= this x the best support: ambiguous (degenerate)
 
   // --- information (information.hpp), eqs. (8)-(10) ---
