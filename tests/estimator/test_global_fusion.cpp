@@ -80,8 +80,8 @@ struct Declaration {
 };
 
 // GNSS as in fly() (no anchor); with `registrations`, every keyframe's LocalMap is answered by a registration of the
-// true pose (0.05 m, 0.1 deg) as soon as T_WL is set, provisionally or not.
-Declaration declare(const SimRun& run, bool registrations) {
+// true pose (0.05 m, 0.1 deg, information times `information_scale`) as soon as T_WL is set, provisionally or not.
+Declaration declare(const SimRun& run, bool registrations, double information_scale = 1.0) {
   SlidingWindowConfig c;
   c.T_BC = run.T_BC;
   c.pixel_sigma = 0.5;
@@ -96,6 +96,7 @@ Declaration declare(const SimRun& run, bool registrations) {
   est.initialize_next_frame(run.frames.front().truth);
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   information.diagonal() << Eigen::Vector3d::Constant(std::pow(180.0 / M_PI / 0.1, 2)), Eigen::Vector3d::Constant(400.0);
+  information *= information_scale;
   Declaration out;
   std::size_t imu_next = 0;
   for (std::size_t k = 0; k < run.frames.size(); ++k) {
@@ -143,6 +144,12 @@ TEST(GlobalFusion, AProvisionalGnssAlignmentIsDeclaredOnceRegistrationsMakeTheHe
   EXPECT_LT(*reg.declared_s, *gnss.declared_s);
   EXPECT_FALSE(reg.declared_before_registration);
   EXPECT_LT(reg.yaw_error_deg, 0.3);
+  // Registrations too weak to make the heading certain (eq. 10's weights can be): the converged GNSS fit still
+  // declares it, no later than GNSS alone.
+  const Declaration weak = declare(run, true, 1e-9);
+  ASSERT_TRUE(weak.declared_s);
+  EXPECT_FALSE(weak.declared_before_registration);
+  EXPECT_LE(*weak.declared_s, *gnss.declared_s);
 }
 
 }  // namespace

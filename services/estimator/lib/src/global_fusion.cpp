@@ -75,10 +75,21 @@ void GlobalFusion::try_align(std::int64_t stamp_ns) {
   const auto a = aligner_.solve();
   if (!a) return;
   if (!declared_) {
-    // Not in W yet. Once a registration has acted on a provisional T_WL the window knows its heading better than any
-    // GNSS fit (check_declaration decides). Before that, a converged fit is used and declared, and a fit that is only
-    // provisional starts T_WL, or replaces a provisional one it is at least twice as certain as in heading.
-    if (aligned_ && counts_.registrations_accepted > accepted_at_provisional_) return;
+    // Not in W yet. Once a registration has acted on a provisional T_WL, the window's own heading sigma decides
+    // (check_declaration); a GNSS fit that converges first still declares it, replacing T_WL only if it is more
+    // certain than the window (registrations weighted as eq. 10 can leave the heading at 3-10 deg for minutes).
+    // Before any registration, a converged fit is used and declared, and a fit that is only provisional starts T_WL,
+    // or replaces a provisional one it is at least twice as certain as in heading.
+    if (aligned_ && counts_.registrations_accepted > accepted_at_provisional_) {
+      if (!a->converged) return;
+      if (realignment_helps(prior_sigmas(config_, *a))) {
+        set_from_fit(*a, stamp_ns, true);
+      } else {
+        declared_ = true;
+        aligner_.clear();
+      }
+      return;
+    }
     const double limit = aligned_ ? 0.5 * provisional_yaw_sigma_deg_ : config_.provisional_yaw_sigma_deg;
     const bool usable = a->pairs >= static_cast<std::size_t>(config_.aligner.min_pairs) &&
                         a->span_m >= config_.aligner.min_span_m && a->yaw_sigma_deg < limit;
