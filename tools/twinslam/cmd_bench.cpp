@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <iostream>
 #include <sstream>
@@ -156,47 +157,36 @@ void add_bench_command(CLI::App& app, int& exit_code) {
     for (const auto& r : results) {
       table << ' ' << cell(100.0 * r.ate.pos.rmse / std::max(r.length_m, 1e-9), "%.3f") << " |";
     }
-    table << "\n| error in W 10 s after start [m / deg] |";
-    for (const auto& m : done) {
-      const auto it = starts.find(m);
-      table << ' '
-            << (it == starts.end() ? std::string("-")
-                                   : cell(it->second.error_at_10s_m, "%.3f") + " / " +
-                                         cell(it->second.error_at_10s_deg, "%.3f"))
-            << " |";
-    }
-    table << "\n| per-frame time, median [ms] |";
-    for (const auto& m : done) table << ' ' << cell(times[m].first, "%.2f") << " |";
-    table << "\n| registration time, median [ms] |";
-    for (const auto& m : done) table << ' ' << cell(times[m].second, "%.2f") << " |";
-    table << "\n| LocalMap -> Registration, median / p99 [ms] |";
-    for (const auto& m : done) {
-      const auto it = starts.find(m);
-      table << ' '
-            << (it == starts.end() || !it->second.latency_median_ms
-                    ? std::string("-")
-                    : cell(it->second.latency_median_ms, "%.1f") + " / " + cell(it->second.latency_p99_ms, "%.1f"))
-            << " |";
-    }
-    table << "\n| accepted registrations > 0.5 m from the truth / all |";
-    for (const auto& m : done) {
-      const auto it = registration_truth.find(m);
-      table << ' '
-            << (it == registration_truth.end()
-                    ? std::string("-")
-                    : std::to_string(it->second.off) + " / " + std::to_string(it->second.accepted))
-            << " |";
-    }
-    table << "\n| registration position error, median before / after, max after [m] |";
-    for (const auto& m : done) {
-      const auto it = registration_truth.find(m);
-      table << ' '
-            << (it == registration_truth.end()
-                    ? std::string("-")
-                    : cell(it->second.median_before_m, "%.3f") + " / " + cell(it->second.median_after_m, "%.3f") +
-                          " / " + cell(it->second.max_after_m, "%.3f"))
-            << " |";
-    }
+    // One row per metric, one cell per mode; "-" where a mode has no such value.
+    const auto row = [&](const char* name, const std::function<std::string(const std::string&)>& value) {
+      table << "\n| " << name << " |";
+      for (const auto& m : done) table << ' ' << value(m) << " |";
+    };
+    const auto start_of = [&](const std::string& m) { return starts.count(m) ? &starts.at(m) : nullptr; };
+    const auto truth_of = [&](const std::string& m) {
+      return registration_truth.count(m) ? &registration_truth.at(m) : nullptr;
+    };
+    row("error in W 10 s after start [m / deg]", [&](const std::string& m) {
+      const WorldStart* w = start_of(m);
+      return w ? cell(w->error_at_10s_m, "%.3f") + " / " + cell(w->error_at_10s_deg, "%.3f") : std::string("-");
+    });
+    row("per-frame time, median [ms]", [&](const std::string& m) { return cell(times[m].first, "%.2f"); });
+    row("registration time, median [ms]", [&](const std::string& m) { return cell(times[m].second, "%.2f"); });
+    row("LocalMap -> Registration, median / p99 [ms]", [&](const std::string& m) {
+      const WorldStart* w = start_of(m);
+      return w && w->latency_median_ms ? cell(w->latency_median_ms, "%.1f") + " / " + cell(w->latency_p99_ms, "%.1f")
+                                       : std::string("-");
+    });
+    row("accepted registrations > 0.5 m from the truth / all", [&](const std::string& m) {
+      const RegistrationTruth* t = truth_of(m);
+      return t ? std::to_string(t->off) + " / " + std::to_string(t->accepted) : std::string("-");
+    });
+    row("registration position error, median before / after, max after [m]", [&](const std::string& m) {
+      const RegistrationTruth* t = truth_of(m);
+      return t ? cell(t->median_before_m, "%.3f") + " / " + cell(t->median_after_m, "%.3f") + " / " +
+                     cell(t->max_after_m, "%.3f")
+               : std::string("-");
+    });
     table << "\n\nPath length " << cell(results.empty() ? std::nullopt : std::optional<double>(results[0].length_m), "%.1f")
           << " m. ATE alignment in parentheses: posyaw for the local-frame VIO, none for modes with a world frame";
     if (!aligned_after.empty()) {
