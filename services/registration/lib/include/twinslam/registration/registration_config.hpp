@@ -52,8 +52,12 @@ struct RegistrationConfig {
   // --- information (information.hpp), eqs. (8)-(10) ---
   WeightMode weights = WeightMode::kAdaptive;
   double paper_beta = 1.0;              // beta of eq. (10) [-]
-  double correlation_inflation = 10.0;  // adaptive: residual variance x this, because neighbouring landmarks and the
-                                        // twin's modelling error are correlated: N points are not N independent looks
+  // adaptive: residual variance x this, because neighbouring landmarks and the twin's per-surface error are
+  // correlated (N points are not N independent looks), and consecutive LocalMaps share most of their landmarks and
+  // surfaces (10 s horizon, about a keyframe a second): the estimator fuses each registration as independent. Chosen
+  // by measurement over city-loops, city-survey, city-long and city-long without / with other twin changes: ATE_p
+  // mean 0.449 m at 10, 0.318 at 20, 0.298 at 40, 0.281 at 80 (but city-survey and the 10 s error worse than at 40)
+  double correlation_inflation = 40.0;
   double min_sigma_m = 0.02;            // adaptive: floor of the residual sigma [m] (noise-free input stays finite)
   double degeneracy_threshold = 0.01;   // eigenvalue of the per-point normalized H below this: direction zeroed [-]
   double fixed_rotation_information = 1e4;     // fixed: diagonal for rotation [1/rad^2]
