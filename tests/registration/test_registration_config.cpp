@@ -52,6 +52,8 @@ TEST(RegistrationConfig, ErrorsNameFileLineAndKey) {
             "r.yaml: registration key 'min_threshold_m': must lie in (0, initial_threshold_m] m, got 5.000000");
   EXPECT_EQ(message("correlation_inflation: 0.5\n"),
             "r.yaml: registration key 'correlation_inflation': must be >= 1, got 0.500000");
+  EXPECT_EQ(message("persistent_corrections: -1\n"),
+            "r.yaml: registration key 'persistent_corrections': must lie in [0, 100] (0: off), got -1.000000");
   EXPECT_EQ(message("- a\n- b\n"), "r.yaml: expected a YAML mapping of registration keys");
   EXPECT_NE(message("a: [1,\n").find("r.yaml:"), std::string::npos);  // malformed YAML names the file
   EXPECT_EQ(message(""), "no error");

@@ -44,7 +44,7 @@ RegistrationRecord to_record(const msg::Registration& m) {
   RegistrationRecord r;
   r.stamp_ns = m.keyframe_stamp_ns();
   r.accepted = m.status() == msg::REG_ACCEPTED;
-  r.reason = r.accepted ? "accepted" : (m.reason().empty() ? "rejected" : m.reason());
+  r.reason = m.reason().empty() ? (r.accepted ? "accepted" : "rejected") : m.reason();
   r.rmse_m = m.rmse_m();
   r.inliers = m.inliers();
   r.fitness = m.fitness();

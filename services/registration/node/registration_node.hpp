@@ -16,6 +16,7 @@
 
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
+#include "twinslam/registration/persistence_gate.hpp"
 #include "twinslam/registration/registration.hpp"
 #include "twinslam/registration/windowed_twin.hpp"
 
@@ -56,6 +57,7 @@ class RegistrationNode {
   RegistrationNodeOptions options_;
   dds::Writer<msg::Registration> writer_;
   WindowedTwin twin_;  // worker only
+  std::map<std::string, PersistenceGate> persistence_;  // per vehicle, worker only
   unsigned long long seq_ = 0;
 
   std::mutex mutex_;

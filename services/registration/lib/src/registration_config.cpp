@@ -69,6 +69,10 @@ const std::vector<Key>& keys() {
       {"max_mahalanobis_sq", &C::max_mahalanobis_sq},
       {"mahalanobis_floor_m", &C::mahalanobis_floor_m},
       {"mahalanobis_floor_deg", &C::mahalanobis_floor_deg},
+      {"persistent_corrections", &C::persistent_corrections},
+      {"persistent_tolerance_m", &C::persistent_tolerance_m},
+      {"persistent_tolerance_deg", &C::persistent_tolerance_deg},
+      {"persistent_span_s", &C::persistent_span_s},
   };
   return k;
 }
@@ -149,6 +153,11 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(pos(max_mahalanobis_sq), s, "max_mahalanobis_sq", "must be > 0", max_mahalanobis_sq);
   check(nonneg(mahalanobis_floor_m), s, "mahalanobis_floor_m", "must be >= 0 m", mahalanobis_floor_m);
   check(nonneg(mahalanobis_floor_deg), s, "mahalanobis_floor_deg", "must be >= 0 deg", mahalanobis_floor_deg);
+  check(persistent_corrections >= 0 && persistent_corrections <= 100, s, "persistent_corrections",
+        "must lie in [0, 100] (0: off)", persistent_corrections);
+  check(pos(persistent_tolerance_m), s, "persistent_tolerance_m", "must be > 0 m", persistent_tolerance_m);
+  check(pos(persistent_tolerance_deg), s, "persistent_tolerance_deg", "must be > 0 deg", persistent_tolerance_deg);
+  check(nonneg(persistent_span_s), s, "persistent_span_s", "must be >= 0 s", persistent_span_s);
 }
 
 RegistrationConfig parse_registration_config(const std::string& text, const std::string& file,

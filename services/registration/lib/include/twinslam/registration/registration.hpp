@@ -31,7 +31,7 @@ struct StageTimes {
 
 struct RegistrationResult {
   RegistrationStatus status = RegistrationStatus::kTooFewPoints;
-  std::string reason;                                              // empty when accepted
+  std::string reason;                                              // empty when accepted (but see persistence_gate.hpp)
   Eigen::Isometry3d correction_W = Eigen::Isometry3d::Identity();  // dT of eq. (3) (icp.hpp: pivot and convention)
   Eigen::Vector3d pivot_W = Eigen::Vector3d::Zero();               // keyframe body position c [m, W]
   Vector6d correction_xi = Vector6d::Zero();  // (Log dR [rad], dp [m]) about the pivot, (rotation, translation)

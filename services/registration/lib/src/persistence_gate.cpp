@@ -1,0 +1,41 @@
+// PersistenceGate (see persistence_gate.hpp).
+#include "twinslam/registration/persistence_gate.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace twinslam::registration {
+
+bool PersistenceGate::agrees(const Vector6d& a, const Vector6d& b) const {
+  // Keyframes a second apart pivot about positions ~1 m apart: a 1 deg rotation moves the translation by < 2 cm.
+  return (a.head<3>() - b.head<3>()).norm() <= config_.persistent_tolerance_deg * M_PI / 180.0 &&
+         (a.tail<3>() - b.tail<3>()).norm() <= config_.persistent_tolerance_m;
+}
+
+bool PersistenceGate::review(RegistrationResult& r, std::int64_t stamp_ns) {
+  if (r.status == RegistrationStatus::kAccepted) {
+    refused_.clear();
+    return false;
+  }
+  if (r.status != RegistrationStatus::kCorrectionTooLarge || config_.persistent_corrections == 0) return false;
+  // The run: the newest refusals that all agree with this one (a drifting estimator's corrections change slowly).
+  std::size_t first = refused_.size();
+  while (first > 0 && agrees(refused_[first - 1].xi, r.correction_xi)) --first;
+  refused_.erase(refused_.begin(), refused_.begin() + static_cast<std::ptrdiff_t>(first));
+  refused_.push_back({stamp_ns, r.correction_xi});
+  const double span_s = 1e-9 * static_cast<double>(stamp_ns - refused_.front().stamp_ns);
+  if (refused_.size() < static_cast<std::size_t>(config_.persistent_corrections) || span_s < config_.persistent_span_s)
+    return false;
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "accepted: %zu keyframes over %.1f s in a row gave this correction (Mahalanobis distance^2 %.2f)",
+                refused_.size(), span_s, r.mahalanobis_sq);
+  refused_.clear();
+  ++readmitted_;
+  r.status = RegistrationStatus::kAccepted;
+  r.information = r.details.information;
+  r.reason = buf;
+  return true;
+}
+
+}  // namespace twinslam::registration

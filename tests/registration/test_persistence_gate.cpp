@@ -1,0 +1,86 @@
+// PersistenceGate: a correction the Mahalanobis gate refuses from keyframes a landmark horizon apart is let in; a short
+// run, a run that disagrees, or one broken by an acceptance is not.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+
+#include "twinslam/registration/persistence_gate.hpp"
+
+namespace twinslam::registration {
+namespace {
+
+RegistrationResult refused(double dx_m, double dyaw_deg = 0.0) {
+  RegistrationResult r;
+  r.status = RegistrationStatus::kCorrectionTooLarge;
+  r.reason = "correction's Mahalanobis distance^2 90 > max_mahalanobis_sq 22.46";
+  r.correction_xi << 0, 0, dyaw_deg * M_PI / 180.0, dx_m, 0.1, 0;
+  r.details.information = Matrix6d::Identity() * 7.0;
+  r.mahalanobis_sq = 90.0;
+  return r;
+}
+
+std::int64_t at(double t_s) { return static_cast<std::int64_t>(t_s * 1e9); }
+
+RegistrationConfig config(int n, double span_s) {
+  RegistrationConfig c;
+  c.persistent_corrections = n;
+  c.persistent_span_s = span_s;
+  return c;
+}
+
+TEST(RegistrationPersistenceGate, AgreeingRefusalsOverTheSpanAdmitTheLastWithItsInformation) {
+  PersistenceGate gate(config(3, 10.0));
+  RegistrationResult a = refused(1.0), b = refused(1.1, 0.3), c = refused(0.95, -0.2), d = refused(1.0);
+  EXPECT_FALSE(gate.review(a, at(100)));
+  EXPECT_FALSE(gate.review(b, at(105)));
+  EXPECT_EQ(b.status, RegistrationStatus::kCorrectionTooLarge);
+  EXPECT_TRUE(b.information.isZero());
+  EXPECT_FALSE(gate.review(c, at(109.5)));  // three agree, but over 9.5 s: the same landmarks could say it
+  EXPECT_TRUE(gate.review(d, at(110)));
+  EXPECT_EQ(d.status, RegistrationStatus::kAccepted);
+  EXPECT_EQ(d.information, d.details.information);
+  EXPECT_NE(d.reason.find("4 keyframes over 10.0 s"), std::string::npos) << d.reason;
+  EXPECT_EQ(gate.readmitted(), 1u);
+  RegistrationResult e = refused(1.0);  // the run starts over after a re-admission
+  EXPECT_FALSE(gate.review(e, at(120)));
+}
+
+TEST(RegistrationPersistenceGate, ARunIsTheNewestRefusalsThatAgreeWithTheLatest) {
+  PersistenceGate gate(config(3, 0.0));
+  RegistrationResult a = refused(1.0), b = refused(1.5), c = refused(1.5, 2.0), d = refused(1.5, 2.2),
+                     e = refused(1.45, 2.1);
+  EXPECT_FALSE(gate.review(a, at(1)));
+  EXPECT_FALSE(gate.review(b, at(2)));  // 0.5 m from a: a new run of one
+  EXPECT_FALSE(gate.review(c, at(3)));  // 2 deg from b: a new run
+  EXPECT_FALSE(gate.review(d, at(4)));
+  EXPECT_TRUE(gate.review(e, at(5)));  // c, d, e agree
+}
+
+TEST(RegistrationPersistenceGate, AnAcceptanceInBetweenResetsAndOtherRejectionsAreLeftAlone) {
+  PersistenceGate gate(config(2, 0.0));
+  RegistrationResult a = refused(1.0);
+  EXPECT_FALSE(gate.review(a, at(1)));
+  RegistrationResult ok;
+  ok.status = RegistrationStatus::kAccepted;
+  EXPECT_FALSE(gate.review(ok, at(2)));
+  RegistrationResult b = refused(1.0);
+  EXPECT_FALSE(gate.review(b, at(3)));  // a was forgotten
+  RegistrationResult degenerate = refused(1.0);
+  degenerate.status = RegistrationStatus::kDegenerate;
+  EXPECT_FALSE(gate.review(degenerate, at(4)));
+  EXPECT_EQ(degenerate.status, RegistrationStatus::kDegenerate);  // never re-admitted: only the gate's refusals
+  RegistrationResult c = refused(1.0);
+  EXPECT_TRUE(gate.review(c, at(5)));  // b and c agree; the degenerate one in between neither counts nor breaks the run
+}
+
+TEST(RegistrationPersistenceGate, ZeroTurnsItOff) {
+  PersistenceGate gate(config(0, 0.0));
+  for (int i = 0; i < 10; ++i) {
+    RegistrationResult r = refused(1.0);
+    EXPECT_FALSE(gate.review(r, at(10.0 * i)));
+    EXPECT_EQ(r.status, RegistrationStatus::kCorrectionTooLarge);
+  }
+}
+
+}  // namespace
+}  // namespace twinslam::registration
