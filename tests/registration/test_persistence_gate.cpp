@@ -1,5 +1,5 @@
 // PersistenceGate: a correction the Mahalanobis gate refuses from keyframes a landmark horizon apart is let in; a short
-// run, a run that disagrees, or one broken by an acceptance is not.
+// run, a run that disagrees, or a stale one is not.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -46,7 +46,7 @@ TEST(RegistrationPersistenceGate, AgreeingRefusalsOverTheSpanAdmitTheLastWithIts
 }
 
 TEST(RegistrationPersistenceGate, ARunIsTheNewestRefusalsThatAgreeWithTheLatest) {
-  PersistenceGate gate(config(3, 0.0));
+  PersistenceGate gate(config(3, 1.0));
   RegistrationResult a = refused(1.0), b = refused(1.5), c = refused(1.5, 2.0), d = refused(1.5, 2.2),
                      e = refused(1.45, 2.1);
   EXPECT_FALSE(gate.review(a, at(1)));
@@ -56,21 +56,40 @@ TEST(RegistrationPersistenceGate, ARunIsTheNewestRefusalsThatAgreeWithTheLatest)
   EXPECT_TRUE(gate.review(e, at(5)));  // c, d, e agree
 }
 
-TEST(RegistrationPersistenceGate, AnAcceptanceInBetweenResetsAndOtherRejectionsAreLeftAlone) {
-  PersistenceGate gate(config(2, 0.0));
+TEST(RegistrationPersistenceGate, AcceptancesAndOtherRejectionsInBetweenNeitherCountNorBreakARun) {
+  PersistenceGate gate(config(3, 2.0));
   RegistrationResult a = refused(1.0);
   EXPECT_FALSE(gate.review(a, at(1)));
-  RegistrationResult ok;
+  RegistrationResult ok;  // e.g. a degenerate cloud accepted with its weak direction zeroed: it could not fix the drift
   ok.status = RegistrationStatus::kAccepted;
   EXPECT_FALSE(gate.review(ok, at(2)));
-  RegistrationResult b = refused(1.0);
-  EXPECT_FALSE(gate.review(b, at(3)));  // a was forgotten
+  EXPECT_EQ(ok.status, RegistrationStatus::kAccepted);
   RegistrationResult degenerate = refused(1.0);
   degenerate.status = RegistrationStatus::kDegenerate;
-  EXPECT_FALSE(gate.review(degenerate, at(4)));
+  EXPECT_FALSE(gate.review(degenerate, at(3)));
   EXPECT_EQ(degenerate.status, RegistrationStatus::kDegenerate);  // never re-admitted: only the gate's refusals
-  RegistrationResult c = refused(1.0);
-  EXPECT_TRUE(gate.review(c, at(5)));  // b and c agree; the degenerate one in between neither counts nor breaks the run
+  RegistrationResult b = refused(1.0), c = refused(1.0);
+  EXPECT_FALSE(gate.review(b, at(3.5)));
+  EXPECT_TRUE(gate.review(c, at(4)));  // a, b, c
+}
+
+TEST(RegistrationPersistenceGate, RefusalsOlderThanTwoSpansAreForgotten) {
+  PersistenceGate gate(config(3, 5.0));
+  RegistrationResult a = refused(1.0), b = refused(1.0), c = refused(1.0), d = refused(1.0);
+  EXPECT_FALSE(gate.review(a, at(0)));
+  EXPECT_FALSE(gate.review(b, at(9)));
+  EXPECT_FALSE(gate.review(c, at(12)));  // a is 12 s old (> 10 s): b, c span only 3 s
+  EXPECT_TRUE(gate.review(d, at(14)));   // b, c, d over 5 s
+}
+
+TEST(RegistrationPersistenceGate, LargeCorrectionsAgreeWithinAShareOfThemselves) {
+  PersistenceGate gate(config(2, 1.0));  // tolerance: max(0.3 m, 10 % of the newest correction)
+  RegistrationResult a = refused(8.0), b = refused(8.7);
+  EXPECT_FALSE(gate.review(a, at(1)));
+  EXPECT_TRUE(gate.review(b, at(2)));  // 0.7 m apart, within 0.87 m
+  RegistrationResult c = refused(2.0), d = refused(2.5);
+  EXPECT_FALSE(gate.review(c, at(3)));
+  EXPECT_FALSE(gate.review(d, at(4)));  // 0.5 m apart, beyond max(0.3, 0.25) m
 }
 
 TEST(RegistrationPersistenceGate, ZeroTurnsItOff) {

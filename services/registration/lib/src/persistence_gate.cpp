@@ -1,23 +1,29 @@
 // PersistenceGate (see persistence_gate.hpp).
 #include "twinslam/registration/persistence_gate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 namespace twinslam::registration {
 
 bool PersistenceGate::agrees(const Vector6d& a, const Vector6d& b) const {
-  // Keyframes a second apart pivot about positions ~1 m apart: a 1 deg rotation moves the translation by < 2 cm.
+  // Keyframes a second apart pivot about positions ~1 m apart: a 1 deg rotation moves the translation by < 2 cm. A
+  // large correction means a fast-drifting estimator, whose corrections change by a share of themselves in a span.
+  const double tolerance_m =
+      std::max(config_.persistent_tolerance_m, config_.persistent_tolerance_fraction * b.tail<3>().norm());
   return (a.head<3>() - b.head<3>()).norm() <= config_.persistent_tolerance_deg * M_PI / 180.0 &&
-         (a.tail<3>() - b.tail<3>()).norm() <= config_.persistent_tolerance_m;
+         (a.tail<3>() - b.tail<3>()).norm() <= tolerance_m;
 }
 
 bool PersistenceGate::review(RegistrationResult& r, std::int64_t stamp_ns) {
-  if (r.status == RegistrationStatus::kAccepted) {
-    refused_.clear();
-    return false;
-  }
   if (r.status != RegistrationStatus::kCorrectionTooLarge || config_.persistent_corrections == 0) return false;
+  // Refusals older than two spans are stale. Accepted registrations in between do not end a run: one that moved the
+  // estimate changes the corrections after it, which then disagree; a degenerate one that could not (its weak
+  // directions zeroed) must not hide the drift along them.
+  const std::int64_t stale_ns = stamp_ns - static_cast<std::int64_t>(2e9 * config_.persistent_span_s);
+  refused_.erase(refused_.begin(), std::find_if(refused_.begin(), refused_.end(),
+                                                [&](const Refusal& f) { return f.stamp_ns >= stale_ns; }));
   // The run: the newest refusals that all agree with this one (a drifting estimator's corrections change slowly).
   std::size_t first = refused_.size();
   while (first > 0 && agrees(refused_[first - 1].xi, r.correction_xi)) --first;

@@ -72,6 +72,7 @@ const std::vector<Key>& keys() {
       {"persistent_corrections", &C::persistent_corrections},
       {"persistent_tolerance_m", &C::persistent_tolerance_m},
       {"persistent_tolerance_deg", &C::persistent_tolerance_deg},
+      {"persistent_tolerance_fraction", &C::persistent_tolerance_fraction},
       {"persistent_span_s", &C::persistent_span_s},
   };
   return k;
@@ -157,6 +158,8 @@ void RegistrationConfig::validate(const std::string& s) const {
         "must lie in [0, 100] (0: off)", persistent_corrections);
   check(pos(persistent_tolerance_m), s, "persistent_tolerance_m", "must be > 0 m", persistent_tolerance_m);
   check(pos(persistent_tolerance_deg), s, "persistent_tolerance_deg", "must be > 0 deg", persistent_tolerance_deg);
+  check(nonneg(persistent_tolerance_fraction) && persistent_tolerance_fraction < 1.0, s,
+        "persistent_tolerance_fraction", "must lie in [0, 1)", persistent_tolerance_fraction);
   check(nonneg(persistent_span_s), s, "persistent_span_s", "must be >= 0 s", persistent_span_s);
 }
 

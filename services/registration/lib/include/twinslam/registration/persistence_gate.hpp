@@ -18,11 +18,12 @@ class PersistenceGate {
   explicit PersistenceGate(const RegistrationConfig& config) : config_(config) {}
 
   // Call with each result of one vehicle in keyframe order (stamp_ns: its keyframe's). A kCorrectionTooLarge result
-  // is accepted (status kAccepted, information from its details, a reason saying so) when the refusals since the last
-  // acceptance end in a run of at least persistent_corrections that all agree with it within persistent_tolerance_m /
-  // persistent_tolerance_deg and span at least persistent_span_s: consecutive LocalMaps share most landmarks, so
-  // only refusals a landmark horizon apart are nearly independent looks. Returns true when it re-admitted `r`. Off
-  // when config.persistent_corrections is 0.
+  // is accepted (status kAccepted, information from its details, a reason saying so) when the refusals of the last
+  // 2 x persistent_span_s end in a run of at least persistent_corrections that all agree with it (rotation within
+  // persistent_tolerance_deg, translation within the larger of persistent_tolerance_m and persistent_tolerance_fraction
+  // of its own) and span at least persistent_span_s: consecutive LocalMaps share most landmarks, so only refusals a
+  // landmark horizon apart are nearly independent looks. Accepted results in between do not break a run. Returns
+  // true when it re-admitted `r`. Off when config.persistent_corrections is 0.
   bool review(RegistrationResult& r, std::int64_t stamp_ns);
 
   std::size_t readmitted() const { return readmitted_; }

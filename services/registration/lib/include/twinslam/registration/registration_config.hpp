@@ -79,6 +79,7 @@ struct RegistrationConfig {
   int persistent_corrections = 5;
   double persistent_tolerance_m = 0.3;    // [m] translation difference between the agreeing corrections
   double persistent_tolerance_deg = 1.0;  // [deg] rotation difference between them
+  double persistent_tolerance_fraction = 0.1;  // translation tolerance at least this x the newest correction's [-]
   double persistent_span_s = 10.0;        // [s] the run spans at least this (local_map.horizon_s: other landmarks)
 
   bool operator==(const RegistrationConfig&) const = default;
