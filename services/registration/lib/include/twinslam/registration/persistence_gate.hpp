@@ -1,11 +1,11 @@
 #pragma once
-// Re-admits corrections the Mahalanobis gate keeps refusing when they keep saying the same thing. The gate (registration
-// .hpp) compares a correction with the covariance the estimator sends; after many fused registrations, which share
-// landmarks and twin surfaces, that covariance is overconfident, and once the estimate has drifted (say, along a
-// facade that hid the drift) every correct registration is refused: measured on city-loops with tracked images, runs
-// of 10-20 refusals of the same 1.0-1.2 m correction over 5-13 s. A loosened gate lets wrong single registrations in
-// (mahalanobis_floor_m 0.2 / 0.3 m: ATE 0.68 -> 1.27 / 2.65 m); a wrong registration rarely repeats the same wrong
-// correction from several keyframes with different landmarks, a drifted estimator does.
+// Re-admits corrections the Mahalanobis gate keeps refusing when they keep saying the same thing. The gate
+// (registration.hpp) compares a correction with the covariance the estimator sends; after many fused registrations,
+// which share landmarks and twin surfaces, that covariance is overconfident, and once the estimate has drifted (say,
+// along a facade that hid the drift) every correct registration is refused: measured on city-loops with tracked
+// images, runs of 10-20 refusals of the same 1.0-1.2 m correction over 5-13 s. A loosened gate lets wrong single
+// registrations in (mahalanobis_floor_m 0.2 / 0.3 m: ATE 0.68 -> 1.27 / 2.65 m); a wrong registration rarely repeats
+// the same wrong correction from keyframes a landmark horizon apart, with other landmarks; a drifted estimator does.
 #include <cstdint>
 #include <vector>
 
