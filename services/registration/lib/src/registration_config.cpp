@@ -160,7 +160,8 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(pos(persistent_tolerance_deg), s, "persistent_tolerance_deg", "must be > 0 deg", persistent_tolerance_deg);
   check(nonneg(persistent_tolerance_fraction) && persistent_tolerance_fraction < 1.0, s,
         "persistent_tolerance_fraction", "must lie in [0, 1)", persistent_tolerance_fraction);
-  check(nonneg(persistent_span_s), s, "persistent_span_s", "must be >= 0 s", persistent_span_s);
+  // > 0: refusals older than 2 spans are forgotten, so a span of 0 would keep runs of one and silently turn it off
+  check(pos(persistent_span_s), s, "persistent_span_s", "must be > 0 s", persistent_span_s);
 }
 
 RegistrationConfig parse_registration_config(const std::string& text, const std::string& file,

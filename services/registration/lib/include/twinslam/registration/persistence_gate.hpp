@@ -36,7 +36,7 @@ class PersistenceGate {
     std::int64_t stamp_ns;
     Vector6d xi;  // correction (rotation, translation) about the keyframe
   };
-  std::vector<Refusal> refused_;  // refused since the last acceptance, oldest first
+  std::vector<Refusal> refused_;  // the current run of agreeing refusals (none older than 2 spans), oldest first
   std::size_t readmitted_ = 0;
 };
 

@@ -74,8 +74,8 @@ struct RegistrationConfig {
   // confident estimator does not reject corrections smaller than what registration can resolve:
   double mahalanobis_floor_m = 0.1;     // [m] added in quadrature to each position sigma
   double mahalanobis_floor_deg = 0.5;   // [deg] added in quadrature to each rotation sigma
-  // persistence_gate.hpp: this many refusals in a row by the Mahalanobis gate that agree within these tolerances
-  // re-admit the last one (the estimator drifted and became overconfident); 0 turns it off.
+  // persistence_gate.hpp: this many refusals by the Mahalanobis gate that agree within these tolerances over at least
+  // persistent_span_s re-admit the last one (the estimator drifted and became overconfident); 0 turns it off.
   int persistent_corrections = 5;
   double persistent_tolerance_m = 0.3;    // [m] translation difference between the agreeing corrections
   double persistent_tolerance_deg = 1.0;  // [deg] rotation difference between them
