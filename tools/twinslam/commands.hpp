@@ -14,5 +14,6 @@ void add_sim_command(CLI::App& app, int& exit_code);     // cmd_sim.cpp
 void add_bench_command(CLI::App& app, int& exit_code);   // cmd_bench.cpp
 void add_twin_command(CLI::App& app, int& exit_code);    // cmd_twin.cpp
 void add_register_command(CLI::App& app, int& exit_code);  // cmd_register.cpp
+void add_gnss_command(CLI::App& app, int& exit_code);      // cmd_gnss.cpp
 
 }  // namespace twinslam::cli
