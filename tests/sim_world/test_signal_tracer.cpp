@@ -88,6 +88,22 @@ TEST(SimWorldSignalTracer, ReflectionExtraPathMatchesTheMirrorGeometry) {
   EXPECT_NEAR(bounce_m - range_m, path.extra_path_m, 1e-3);
 }
 
+TEST(SimWorldSignalTracer, LineOfSightWithAFacadeReflectionIsMultipathOnlyWhenAsked) {
+  // A only 1 m tall: the direct ray passes over it, and B's wall still reflects the same bounce as above.
+  const EmbreeScene scene(canyon(1));
+  const SignalTracer tracer(scene);
+  const Eigen::Vector3d s = toward(kElevation_deg, 270 + kWestOffset_deg);
+  const SignalPath direct_only = tracer.trace(kReceiver_W, s);
+  EXPECT_TRUE(direct_only.line_of_sight);
+  EXPECT_FALSE(direct_only.reflected);
+  const SignalPath both = tracer.trace(kReceiver_W, s, /*also_with_line_of_sight=*/true);
+  EXPECT_TRUE(both.line_of_sight);
+  ASSERT_TRUE(both.reflected);
+  EXPECT_NEAR(both.extra_path_m, 2 * 10 * std::cos(kElevation_deg * kDeg) * std::cos(kWestOffset_deg * kDeg), 1e-3);
+  // Straight up nothing reflects (no wall faces the sky), whatever is asked.
+  EXPECT_FALSE(tracer.trace(kReceiver_W, Eigen::Vector3d::UnitZ(), true).reflected);
+}
+
 TEST(SimWorldSignalTracer, BlockedSatelliteWithoutAReflectorIsDropped) {
   const Eigen::Vector3d s = toward(kElevation_deg, 270 + kWestOffset_deg);
   // Only A: its east wall faces the receiver but has the satellite behind it.

@@ -12,6 +12,7 @@
 #include "twinslam/sim/clock.hpp"
 #include "twinslam/sim/dataset_writer.hpp"
 #include "twinslam/sim/flight_surroundings.hpp"
+#include "twinslam/sim/gnss_raytrace.hpp"
 #include "twinslam/sim/scenario_io.hpp"
 #include "twinslam/sim/sim_camera.hpp"
 #include "twinslam/sim/world/city.hpp"
@@ -49,6 +50,25 @@ void write_preview(const fs::path& dir, const Renderer& world, const FlightTraje
     cv::imwrite((dir / ("frame_" + std::to_string(i) + ".png")).string(), frames[i]);
   }
 }
+
+// The GNSS model the scenario names: `raytrace` needs the world, so it is built here and handed to the sensor writer;
+// `gaussian` is the writer's own; `learned` is refused rather than silently replaced.
+GnssModelFn gnss_model(const Scenario& scenario, const City& city, const fs::path& dir) {
+  if (scenario.gnss.model == "gaussian") return {};
+  if (scenario.gnss.model != "raytrace") {
+    throw InputError("gnss.model: '" + scenario.gnss.model +
+                     "' is not implemented yet (the learned model of issue 13); use 'raytrace' or 'gaussian'");
+  }
+  return [&scenario, &city, dir](const FlightTrajectory& trajectory) {
+    const std::vector<std::int64_t> stamps = sample_stamps(scenario.gnss.rate_hz, trajectory.duration());
+    std::vector<Eigen::Vector3d> p_W;
+    for (const std::int64_t s : stamps) p_W.push_back(trajectory.at(time_s(s)).p_W);
+    const EmbreeScene world(city.mesh);
+    RaytraceGnss g = simulate_gnss_raytrace(stamps, p_W, scenario.origin, world, scenario.seed);
+    write_pseudoranges(dir, g.pseudoranges);
+    return std::move(g.fixes);
+  };
+}
 }  // namespace
 
 SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
@@ -75,7 +95,7 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
   // Trajectory, IMU, GNSS, ground truth, dataset.yaml.
   const TwinReference twin_ref{"twin/twin.ply", "ENU@origin", twin.missing_building_ids, twin.added_building_ids,
                                twin.shifted_building_ids, twin.shifted_building_offsets_W};
-  const SensorData sensors = write_sensor_dataset(dir, scenario, city.hints, twin_ref);
+  const SensorData sensors = write_sensor_dataset(dir, scenario, city.hints, twin_ref, gnss_model(scenario, city, dir));
   summary.imu = sensors.imu.size();
   summary.gnss = sensors.gnss.size();
   summary.duration_s = sensors.trajectory.duration();

@@ -144,10 +144,12 @@ void write_dataset_yaml(const fs::path& dir, const Scenario& scenario, const Twi
 }
 
 SensorData write_sensor_dataset(const fs::path& dir, const Scenario& scenario, const SceneHints& hints,
-                                const TwinReference& twin) {
+                                const TwinReference& twin, const GnssModelFn& gnss_model) {
   SensorData d{make_flight_trajectory(scenario, hints), {}, {}};
   d.imu = simulate_imu(d.trajectory, scenario.imu, scenario.seed);
-  d.gnss = simulate_gnss(d.trajectory, scenario.gnss, scenario.origin, scenario.seed);
+  fs::create_directories(dir / "mav0" / "gnss0");
+  d.gnss = gnss_model ? gnss_model(d.trajectory)
+                      : simulate_gnss(d.trajectory, scenario.gnss, scenario.origin, scenario.seed);
   write_imu(dir, d.imu, scenario.imu);
   write_gnss(dir, d.gnss);
   write_groundtruth(dir, d.trajectory, d.imu);

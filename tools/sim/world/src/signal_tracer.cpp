@@ -76,12 +76,13 @@ void SignalTracer::build_grid() {
   }
 }
 
-SignalPath SignalTracer::trace(const Eigen::Vector3d& p_W, const Eigen::Vector3d& to_satellite_W) const {
+SignalPath SignalTracer::trace(const Eigen::Vector3d& p_W, const Eigen::Vector3d& to_satellite_W,
+                               bool also_with_line_of_sight) const {
   SignalPath path;
   RayHit hit;
   if (!scene_.intersect(p_W, to_satellite_W, kSelfHit_m, kSky_m, &hit)) {
     path.line_of_sight = true;
-    return path;
+    if (!also_with_line_of_sight) return path;
   }
   // Candidates come sorted by extra path, so the first clear one is the shortest bounce and costs the fewest rays.
   for (const Bounce& b : mirror_bounces(p_W, to_satellite_W)) {

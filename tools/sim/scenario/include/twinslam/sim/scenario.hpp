@@ -58,7 +58,7 @@ struct ImuSimConfig {
 
 struct GnssSimConfig {
   double rate_hz = 5;                         // [Hz]
-  std::string model = "raytrace";             // raytrace | learned | gaussian (this issue: all use the simple model)
+  std::string model = "raytrace";             // raytrace (city geometry) | gaussian (sigma_m) | learned (refused)
   double sigma_m = 1.5;                       // gaussian: horizontal standard deviation [m]
 };
 

@@ -3,6 +3,7 @@
 // shortest form that reads back to the same double, so ingest reads exactly what was simulated; stamps are integer
 // ns. Each writer creates the folders it needs and throws InputError naming the file if it cannot be written.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,10 @@ struct SensorData {
   std::vector<ImuSample> imu;
   std::vector<GnssSample> gnss;
 };
+// `gnss_model` replaces the simple GNSS model of gnss_sim.hpp when given (the ray-traced one needs the world, which
+// this library does not have): it returns the fixes for the flight and may write its own files.
+using GnssModelFn = std::function<std::vector<GnssSample>(const FlightTrajectory&)>;
 SensorData write_sensor_dataset(const std::filesystem::path& dir, const Scenario& scenario, const SceneHints& hints,
-                                const TwinReference& twin = {});
+                                const TwinReference& twin = {}, const GnssModelFn& gnss_model = {});
 
 }  // namespace twinslam::sim

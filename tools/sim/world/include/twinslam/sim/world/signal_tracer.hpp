@@ -24,8 +24,9 @@ namespace twinslam::sim {
 
 struct SignalPath {
   bool line_of_sight = false;     // the direct ray to the satellite is unobstructed
-  bool reflected = false;         // blocked, but a single-bounce path off a facade reaches the receiver
-  double extra_path_m = 0;        // reflected path minus the direct range [m] (> 0); 0 when line_of_sight
+  bool reflected = false;         // a single-bounce path off a facade reaches the receiver (searched when the direct
+                                  // ray is blocked, or always with also_with_line_of_sight: multipath)
+  double extra_path_m = 0;        // reflected path minus the direct range [m] (> 0); 0 when !reflected
   Eigen::Vector3d reflection_point_W = Eigen::Vector3d::Zero();  // where the reflected signal hits the facade [m, W]
   int building = -1;              // building_id of the reflecting facade, -1 if none
 };
@@ -43,7 +44,10 @@ class SignalTracer {
   SignalTracer(const EmbreeScene& scene, SignalTracerConfig config = {});
 
   // p_W receiver [m, W = ENU]; to_satellite_W unit vector from the receiver to the satellite (W).
-  SignalPath trace(const Eigen::Vector3d& p_W, const Eigen::Vector3d& to_satellite_W) const;
+  // also_with_line_of_sight: look for the reflection even when the direct ray is clear (the receiver then gets both:
+  // code multipath); otherwise only blocked signals are traced further (NLOS).
+  SignalPath trace(const Eigen::Vector3d& p_W, const Eigen::Vector3d& to_satellite_W,
+                   bool also_with_line_of_sight = false) const;
 
   std::size_t num_facades() const { return facades_.size(); }  // indexed reflector triangles
 
