@@ -11,6 +11,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "gnss_commands.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
 #include "twinslam/gnss/fix_errors.hpp"
@@ -106,6 +107,7 @@ void add_gnss_command(CLI::App& app, int& exit_code) {
   solve->add_flag("--json", o->json, "Print one JSON object: epochs, fixes, h_err_median_m, h_err_p95_m, ...");
   solve->add_option("--config", o->config, "Receiver config (YAML with a `receiver:` section)")->type_name("FILE.yaml");
   solve->callback([o, &exit_code] { exit_code = run_gnss_solve(*o); });
+  add_gnss_errors_command(*gnss, exit_code);
 }
 
 }  // namespace twinslam::cli
