@@ -24,6 +24,7 @@ void bind_fusion_fields(yaml::Fields& fields, GlobalFusionConfig& f) {
       .number("initial_pose_position_sigma_m", f.initial_pose_position_sigma_m, "m")
       .number("initial_pose_yaw_sigma_deg", f.initial_pose_yaw_sigma_deg, "deg")
       .number("gnss_alignment_sigma_scale", f.gnss_alignment_sigma_scale)
+      .number("gnss_correlation_s", f.gnss_correlation_s, "s")
       .number("provisional_yaw_sigma_deg", f.provisional_yaw_sigma_deg, "deg")
       .number("aligner_converged_yaw_sigma_deg", f.aligner.converged_yaw_sigma_deg, "deg")
       .integer("aligner_min_pairs", f.aligner.min_pairs)

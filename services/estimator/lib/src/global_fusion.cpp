@@ -1,5 +1,6 @@
 #include "twinslam/estimator/global_fusion.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "twinslam/core/error.hpp"
@@ -32,6 +33,9 @@ void GlobalFusionConfig::validate() const {
   for (const auto& [name, v] : positive) {
     if (!(v > 0.0) || !std::isfinite(v)) throw InputError(std::string("global fusion: ") + name + " must be > 0");
   }
+  if (!(gnss_correlation_s >= 0.0) || !std::isfinite(gnss_correlation_s)) {
+    throw InputError("global fusion: gnss_correlation_s must be >= 0");
+  }
   if (!(realign_after_s >= 0.0) || !std::isfinite(realign_after_s)) {
     throw InputError("global fusion: realign_after_s must be >= 0");
   }
@@ -52,6 +56,8 @@ GlobalFusion::GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusion
 
 void GlobalFusion::on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, const Eigen::Matrix3d& cov_W) {
   ++counts_.gnss_in;
+  const double interval_s = last_gnss_ns_ < 0 ? 0.0 : 1e-9 * static_cast<double>(stamp_ns - last_gnss_ns_);
+  last_gnss_ns_ = stamp_ns;
   if (!config_.align_from_gnss || !last_frame_ || last_frame_->status != EstimatorStatus::kTracking) return;
   // The body position at the fix's stamp from the last estimate and its velocity (the fix is at most one frame
   // interval away: side inputs come with the first frame at or after their stamp).
@@ -59,7 +65,7 @@ void GlobalFusion::on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, co
   AlignmentPair pair;
   pair.p_L = last_frame_->T_LB.translation() + last_frame_->v_L * dt;
   pair.p_W = p_W;
-  pair.cov_W = cov_W;
+  pair.cov_W = interval_s > 0.0 ? std::max(1.0, config_.gnss_correlation_s / interval_s) * cov_W : cov_W;
   try {
     aligner_.add(pair);
     ++counts_.gnss_paired;

@@ -28,8 +28,9 @@ struct RaytraceGnssModel {
   double galileo_offset_m = 2.5;       // Galileo-to-GPS system time offset as the receiver sees it [m]
   double ionosphere_sigma_m = 1.5;     // vertical ionospheric residual after the single-frequency broadcast (Klobuchar)
                                        // correction, which removes about half of it [m]
-  double per_satellite_sigma_m = 0.4;  // what is each satellite's own at zenith: troposphere model error, orbit and
-                                       // clock errors of the broadcast ephemeris (mapped by 1 / sin(elevation)) [m]
+  double per_satellite_sigma_m = 1.0;  // what is each satellite's own at zenith: broadcast orbit and clock errors
+                                       // (URE ~0.7 m), ionospheric gradients between pierce points, troposphere
+                                       // model error (mapped by 1 / sin(elevation)) [m]
   double atmosphere_tau_s = 300;       // correlation time of both [s]
   double reflection_loss_min_db = 3;   // power lost in a facade reflection, uniform in [min, max] per signal: glass
   double reflection_loss_max_db = 12;  // and metal reflect well, brick and concrete less [dB]
