@@ -26,15 +26,25 @@ SimRun flight() {
   return testing::make_sim_run(30.0, 0.5, 5, 8000, 460.0, traj, {30.0, 45.0, 45.0});
 }
 
+// The window every flight here uses: the run's extrinsics, 0.5 px, a time cap that never binds (deterministic).
+SlidingWindowConfig window_config(const SimRun& run) {
+  SlidingWindowConfig c;
+  c.T_BC = run.T_BC;
+  c.pixel_sigma = 0.5;
+  c.max_solver_time_s = 10.0;
+  return c;
+}
+
+// The IMU samples up to 5 ms past a frame, before that frame.
+void feed_imu(const SimRun& run, SlidingWindowEstimator& est, std::size_t& next, std::int64_t stamp_ns) {
+  while (next < run.imu.size() && run.imu[next].stamp_ns <= stamp_ns + 5'000'000) est.add_imu(run.imu[next++]);
+}
+
 // Flies the run with a GNSS fix (true position + 1 m noise per axis, L = W) every fourth frame and no registration at
 // all, so every realign_after_s an outage asks for a new alignment. With `anchored`, another W-frame source (5 cm
 // position factors on every frame, standing in for what keeps a real estimate certain) is in the window too.
 GlobalFusionCounts fly(const SimRun& run, bool anchored) {
-  SlidingWindowConfig c;
-  c.T_BC = run.T_BC;
-  c.pixel_sigma = 0.5;
-  c.max_solver_time_s = 10.0;  // deterministic
-  SlidingWindowEstimator est(c);
+  SlidingWindowEstimator est(window_config(run));
   GlobalFusionConfig g;
   g.fuse_registrations = true;
   g.align_from_gnss = true;
@@ -49,9 +59,7 @@ GlobalFusionCounts fly(const SimRun& run, bool anchored) {
   std::size_t imu_next = 0;
   for (std::size_t k = 0; k < run.frames.size(); ++k) {
     const auto& f = run.frames[k];
-    while (imu_next < run.imu.size() && run.imu[imu_next].stamp_ns <= f.stamp_ns + 5'000'000) {
-      est.add_imu(run.imu[imu_next++]);
-    }
+    feed_imu(run, est, imu_next, f.stamp_ns);
     anchor->add_fix(f.stamp_ns, f.truth.p_L, 0.05);
     if (k % 4 == 0) {
       fusion.on_gnss(f.stamp_ns, f.truth.p_L + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)),
@@ -83,11 +91,7 @@ struct Declaration {
 // GNSS as in fly() (no anchor); with `registrations`, every keyframe's LocalMap is answered by a registration of the
 // true pose (0.05 m, 0.1 deg, information times `information_scale`) as soon as T_WL is set, provisionally or not.
 Declaration declare(const SimRun& run, bool registrations, double information_scale = 1.0) {
-  SlidingWindowConfig c;
-  c.T_BC = run.T_BC;
-  c.pixel_sigma = 0.5;
-  c.max_solver_time_s = 10.0;
-  SlidingWindowEstimator est(c);
+  SlidingWindowEstimator est(window_config(run));
   GlobalFusionConfig g;
   g.fuse_registrations = true;
   g.align_from_gnss = true;
@@ -104,9 +108,7 @@ Declaration declare(const SimRun& run, bool registrations, double information_sc
   for (std::size_t k = 0; k < run.frames.size(); ++k) {
     const auto& f = run.frames[k];
     const double t = 1e-9 * static_cast<double>(f.stamp_ns - run.frames.front().stamp_ns);
-    while (imu_next < run.imu.size() && run.imu[imu_next].stamp_ns <= f.stamp_ns + 5'000'000) {
-      est.add_imu(run.imu[imu_next++]);
-    }
+    feed_imu(run, est, imu_next, f.stamp_ns);
     if (k % 4 == 0) {
       fusion.on_gnss(f.stamp_ns, f.truth.p_L + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)),
                      Eigen::Matrix3d::Identity());
@@ -154,21 +156,11 @@ TEST(GlobalFusion, AProvisionalGnssAlignmentIsDeclaredOnceRegistrationsMakeTheHe
   EXPECT_LE(*weak.declared_s, *gnss.declared_s);
 }
 
-}  // namespace
-}  // namespace twinslam::estimator
-
-namespace twinslam::estimator {
-namespace {
-
 // GNSS whose error is a slowly varying bias (urban NLOS, atmosphere): the track rotated by 8 deg about its start plus
 // 0.3 m of white noise. Taken as independent, 1 m fixes declare a fit whose heading is degrees off; counting one fix
 // per 30 s (gnss_correlation_s) keeps the fit's heading sigma honest, so it is not declared within the 30 s flight.
 std::optional<double> declared_heading_error_deg(const SimRun& run, double correlation_s) {
-  SlidingWindowConfig c;
-  c.T_BC = run.T_BC;
-  c.pixel_sigma = 0.5;
-  c.max_solver_time_s = 10.0;
-  SlidingWindowEstimator est(c);
+  SlidingWindowEstimator est(window_config(run));
   GlobalFusionConfig g;
   g.align_from_gnss = true;
   g.gnss_correlation_s = correlation_s;
@@ -181,9 +173,7 @@ std::optional<double> declared_heading_error_deg(const SimRun& run, double corre
   std::size_t imu_next = 0;
   for (std::size_t k = 0; k < run.frames.size(); ++k) {
     const auto& f = run.frames[k];
-    while (imu_next < run.imu.size() && run.imu[imu_next].stamp_ns <= f.stamp_ns + 5'000'000) {
-      est.add_imu(run.imu[imu_next++]);
-    }
+    feed_imu(run, est, imu_next, f.stamp_ns);
     if (k % 4 == 0) {
       const Eigen::Vector3d p = start + bias * (f.truth.p_L - start) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
       fusion.on_gnss(f.stamp_ns, p, Eigen::Matrix3d::Identity());
