@@ -35,8 +35,8 @@ struct GlobalFusionConfig {
   // Urban GNSS errors (NLOS, multipath, atmosphere) persist for seconds: fixes closer than this are not independent.
   // Each fix's covariance is multiplied by max(1, gnss_correlation_s / interval since the previous fix), so the fit's
   // sigmas count one independent fix per correlation time (0: fixes taken as independent) [s]. Measured on city-loops
-  // with ray-traced GNSS (ideal tracks): 0 s -> vio-twin 8.08 m (a 10 s fit biased by NLOS near the tower, declared
-  // with a 7 deg heading error), 30 s -> 0.244 m.
+  // with ray-traced GNSS (ideal tracks): 0 s -> vio-twin 8.93 m (an early fit biased by NLOS near the tower, declared
+  // 10 m / 17 deg off), 30 s -> 0.385 m.
   double gnss_correlation_s = 30.0;
   // A GNSS fit with a heading sigma below this starts T_WL provisionally (for registration to refine; Odometry stays
   // in L until declared) [deg]; 0: only a converged fit (aligner.converged_yaw_sigma_deg) starts it
