@@ -8,6 +8,11 @@ build=${TWINSLAM_BUILD_DIR:-$root/build}
 bash "$root/scripts/setup.sh"
 twinslam="$build/bin/twinslam"
 dataset=${1:-$root/runs/city-loops}
+# The default dataset is simulated once; one simulated before the ray-traced GNSS (no pseudoranges.csv) is redone.
+if [[ -z "${1:-}" && -d "$dataset/mav0" && ! -f "$dataset/mav0/gnss0/pseudoranges.csv" ]]; then
+  echo "demo: $dataset predates the ray-traced GNSS; simulating it again" >&2
+  rm -rf "$dataset"
+fi
 if [[ ! -d "$dataset/mav0" ]]; then
   "$twinslam" sim --scenario city-loops --out "$dataset" --features --preview
 fi
