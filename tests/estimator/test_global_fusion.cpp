@@ -196,5 +196,45 @@ TEST(GlobalFusion, CorrelatedGnssErrorsDoNotDeclareAnOverconfidentHeading) {
   EXPECT_FALSE(declared_heading_error_deg(run, 30.0).has_value());
 }
 
+
+// vio-gnss on the figure-eight: fixes (truth + 1 m white noise) align T_WL and then act as window terms. After the
+// declaration the estimate in W stays on the truth, and every fix is accounted for (fused, or counted unmatched).
+TEST(GlobalFusion, FusedGnssFixesHoldTheEstimateInTheWorldFrame) {
+  const SimRun run = flight();
+  SlidingWindowEstimator est(window_config(run));
+  GlobalFusionConfig g;
+  g.align_from_gnss = true;
+  g.fuse_gnss = true;
+  g.gnss_correlation_s = 0.0;  // white-noise fixes
+  GlobalFusion fusion(est, g);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  est.initialize_next_frame(run.frames.front().truth);
+  std::size_t imu_next = 0, fixes = 0;
+  double sq = 0;
+  int n = 0;
+  for (std::size_t k = 0; k < run.frames.size(); ++k) {
+    const auto& f = run.frames[k];
+    feed_imu(run, est, imu_next, f.stamp_ns);
+    if (k % 4 == 0) {
+      fusion.on_gnss(f.stamp_ns, f.truth.p_L + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)),
+                     Eigen::Matrix3d::Identity());
+      ++fixes;
+    }
+    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
+    fusion.after_frame(e, est.local_map());
+    if (fusion.world_declared() && f.stamp_ns > run.frames.back().stamp_ns - 10'000'000'000LL) {
+      sq += ((est.world_alignment() * e.T_LB).translation() - f.truth.p_L).squaredNorm();  // truth: L = W
+      ++n;
+    }
+  }
+  ASSERT_GT(n, 0) << "never declared";
+  EXPECT_LT(std::sqrt(sq / n), 0.5);  // 1 m fixes averaged by the window and the prior
+  const GnssProviderCounts& c = fusion.gnss_counts();
+  EXPECT_EQ(c.received, fixes);
+  EXPECT_GT(c.attached, fixes / 2);
+  EXPECT_GT(c.marginalized, 0u);
+}
+
 }  // namespace
 }  // namespace twinslam::estimator

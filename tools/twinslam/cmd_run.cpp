@@ -33,6 +33,8 @@ namespace fs = std::filesystem;
 
 namespace {
 bool uses_twin(const std::string& mode) { return mode.rfind("vio-twin", 0) == 0; }
+// Modes whose estimator fuses GNSS fixes as window terms (tightly coupled).
+bool fuses_gnss(const std::string& mode) { return mode == "vio-gnss" || mode == "vio-twin-gnss"; }
 
 OdometryRecord to_record(const msg::Odometry& m) {
   const bool estimated = m.status() == msg::ODOM_TRACKING || m.status() == msg::ODOM_ALIGNED;
@@ -79,8 +81,11 @@ int run_pipeline(const RunOptions& o) {
   // Twin modes: W's origin and the twin store (built once per twin content), and how T_WL is first found.
   std::optional<DatasetGeo> geo;
   fs::path twin_store;
+  if (fuses_gnss(o.mode) && dataset.gnss.empty()) {
+    throw UsageError("mode '" + o.mode + "': the dataset has no GNSS (mav0/gnss0)");
+  }
+  if (uses_twin(o.mode) || fuses_gnss(o.mode)) geo = read_dataset_geo(dataset.root);
   if (uses_twin(o.mode)) {
-    geo = read_dataset_geo(dataset.root);
     if (dataset.gnss.empty() && o.initial_pose.empty()) {
       throw UsageError("mode '" + o.mode + "': the dataset has no GNSS (mav0/gnss0) for the initial alignment; give "
                        "--initial-pose \"E N U YAW_DEG\"");
@@ -136,15 +141,17 @@ int run_pipeline(const RunOptions& o) {
     if (s == "registration") args.insert(args.end(), {"--weights", o.weights});
     if (s == "estimator") {
       args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
-      if (geo) {
-        args.insert(args.end(), {"--fuse-registrations", "--origin", origin_text(geo->origin)});
+      if (geo) args.insert(args.end(), {"--origin", origin_text(geo->origin)});
+      if (fuses_gnss(o.mode)) args.push_back("--fuse-gnss");
+      if (uses_twin(o.mode)) {
+        args.push_back("--fuse-registrations");
         // Lockstep: each registration is fused at the same frame in every run, whatever the edge's speed.
         if (!o.realtime) args.push_back("--await-registration");
-        if (!o.initial_pose.empty()) {
-          args.insert(args.end(), {"--initial-pose", o.initial_pose});
-        } else {
-          args.push_back("--align-gnss");
-        }
+      }
+      if (geo && !o.initial_pose.empty()) {
+        args.insert(args.end(), {"--initial-pose", o.initial_pose});
+      } else if (geo) {
+        args.push_back("--align-gnss");
       }
     }
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
@@ -215,7 +222,7 @@ int run_pipeline(const RunOptions& o) {
     // LocalMap -> Registration, both seen by this process (services/registration/README.md).
     run["registration_latency_ms"] = {{"count", latency.count}, {"median", latency.median_ms}, {"p99", latency.p99_ms}};
   }
-  if (geo) {
+  if (uses_twin(o.mode)) {
     run["twin"] = {{"store", twin_store.string()},
                    {"weights", o.weights},
                    {"initial_alignment", o.initial_pose.empty() ? std::string("gnss") : "pose " + o.initial_pose}};

@@ -11,9 +11,7 @@ namespace {
 // Where each missing mode is being built, for the refusal message.
 const std::map<std::string, std::string>& missing() {
   static const std::map<std::string, std::string> m{
-      {"vio-gnss", "tightly coupled GNSS fusion, issue 13"},
       {"vio-gnss-loose", "loosely coupled GNSS + VIO fusion, issue 13"},
-      {"vio-twin-gnss", "digital-twin registration and GNSS fusion, issues 12 and 13"},
   };
   return m;
 }
@@ -25,7 +23,13 @@ const std::vector<std::string>& all_modes() {
   return modes;
 }
 
-bool mode_implemented(const std::string& mode) { return mode == "vio" || mode == "vio-twin"; }
+namespace {
+bool all_modes_has(const std::string& mode) {
+  return std::find(all_modes().begin(), all_modes().end(), mode) != all_modes().end();
+}
+}  // namespace
+
+bool mode_implemented(const std::string& mode) { return mode != "vio-gnss-loose" && all_modes_has(mode); }
 
 std::string implemented_modes_text() {
   std::string out;

@@ -20,6 +20,7 @@ void bind_fusion_fields(yaml::Fields& fields, GlobalFusionConfig& f) {
   fields.section("fusion")
       .flag("fuse_registrations", f.fuse_registrations)
       .flag("align_from_gnss", f.align_from_gnss)
+      .flag("fuse_gnss", f.fuse_gnss)
       .number("realign_after_s", f.realign_after_s, "s")
       .number("initial_pose_position_sigma_m", f.initial_pose_position_sigma_m, "m")
       .number("initial_pose_yaw_sigma_deg", f.initial_pose_yaw_sigma_deg, "deg")
@@ -31,7 +32,9 @@ void bind_fusion_fields(yaml::Fields& fields, GlobalFusionConfig& f) {
       .number("aligner_min_span_m", f.aligner.min_span_m, "m")
       .count("aligner_max_pairs", f.aligner.max_pairs)
       .number("registration_huber_delta", f.registration.huber_delta)
-      .number("registration_max_reattach_s", f.registration.max_reattach_s, "s");
+      .number("registration_max_reattach_s", f.registration.max_reattach_s, "s")
+      .number("gnss_huber_delta", f.gnss.huber_delta)
+      .number("gnss_max_dt_s", f.gnss.max_dt_s, "s");
 }
 
 }  // namespace

@@ -41,6 +41,7 @@ void GlobalFusionConfig::validate() const {
   }
   aligner.validate();
   registration.validate();
+  gnss.validate();
 }
 
 GlobalFusion::GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusionConfig& config,
@@ -49,15 +50,27 @@ GlobalFusion::GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusion
       config_(config),
       initial_pose_(initial_pose),
       provider_(std::make_shared<MapRegistrationProvider>(config.registration)),
+      gnss_provider_(std::make_shared<GnssProvider>(config.gnss)),
       aligner_(config.aligner) {
   config_.validate();
   if (config_.fuse_registrations) estimator_.add_factor_provider(provider_);
+  if (config_.fuse_gnss) estimator_.add_factor_provider(gnss_provider_);
 }
 
 void GlobalFusion::on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, const Eigen::Matrix3d& cov_W) {
   ++counts_.gnss_in;
   const double interval_s = last_gnss_ns_ < 0 ? 0.0 : 1e-9 * static_cast<double>(stamp_ns - last_gnss_ns_);
   last_gnss_ns_ = stamp_ns;
+  // Time-correlated errors: the covariance of one independent fix per gnss_correlation_s (fit and window terms).
+  const Eigen::Matrix3d cov_eff =
+      interval_s > 0.0 ? std::max(1.0, config_.gnss_correlation_s / interval_s) * cov_W : cov_W;
+  if (config_.fuse_gnss) {
+    try {
+      gnss_provider_->add_fix(stamp_ns, p_W, cov_eff);
+    } catch (const InputError&) {
+      // counted as received (gnss_in) but not fused: no usable covariance
+    }
+  }
   if (!config_.align_from_gnss || !last_frame_ || last_frame_->status != EstimatorStatus::kTracking) return;
   // The body position at the fix's stamp from the last estimate and its velocity (the fix is at most one frame
   // interval away: side inputs come with the first frame at or after their stamp).
@@ -65,7 +78,7 @@ void GlobalFusion::on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, co
   AlignmentPair pair;
   pair.p_L = last_frame_->T_LB.translation() + last_frame_->v_L * dt;
   pair.p_W = p_W;
-  pair.cov_W = interval_s > 0.0 ? std::max(1.0, config_.gnss_correlation_s / interval_s) * cov_W : cov_W;
+  pair.cov_W = cov_eff;
   try {
     aligner_.add(pair);
     ++counts_.gnss_paired;
@@ -199,6 +212,9 @@ void GlobalFusion::after_frame(const FrameEstimate& estimate, const std::optiona
   }
   if (local_map) {
     check_declaration();  // a keyframe: the registrations of earlier ones are in the window
+    // GNSS terms join once the alignment is declared: on a provisional T_WL (heading sigma up to 30 deg) their
+    // weak, correlation-inflated fixes would hold the heading where the first fit put it.
+    gnss_provider_->set_active(world_declared());
     published_[local_map->keyframe_stamp_ns] = {local_map->T_LB, local_map->T_WL};
     if (published_.size() > kPublishedKept) published_.erase(published_.begin());
   }

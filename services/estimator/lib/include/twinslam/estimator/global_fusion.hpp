@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 
+#include "twinslam/estimator/gnss_provider.hpp"
 #include "twinslam/estimator/map_registration_provider.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
 #include "twinslam/estimator/world_aligner.hpp"
@@ -27,6 +28,7 @@ namespace twinslam::estimator {
 struct GlobalFusionConfig {
   bool fuse_registrations = false;      // twin modes
   bool align_from_gnss = false;         // use GNSS fixes for the initial alignment (and re-alignment)
+  bool fuse_gnss = false;               // GNSS fixes as window terms once T_WL is set (vio-gnss, vio-twin-gnss)
   // Re-align from GNSS when no registration was accepted for this long after alignment (0: never) [s].
   double realign_after_s = 30.0;
   double initial_pose_position_sigma_m = 5.0;  // prior of a user-given initial pose [m]
@@ -43,6 +45,7 @@ struct GlobalFusionConfig {
   double provisional_yaw_sigma_deg = 30.0;
   WorldAlignerConfig aligner;
   MapRegistrationProviderConfig registration;
+  GnssProviderConfig gnss;
   void validate() const;  // throws twinslam::InputError naming the field
 };
 
@@ -75,6 +78,7 @@ class GlobalFusion {
 
   const GlobalFusionCounts& counts() const { return counts_; }
   const MapRegistrationCounts& registration_counts() const { return provider_->counts(); }
+  const GnssProviderCounts& gnss_counts() const { return gnss_provider_->counts(); }
   std::optional<WorldAlignment4Dof> last_alignment() const { return last_alignment_; }
   // T_WL is set and its heading is certain enough to call T_WB a pose in W (Odometry ODOM_ALIGNED).
   bool world_declared() const { return aligned_ && declared_; }
@@ -93,6 +97,7 @@ class GlobalFusion {
   GlobalFusionConfig config_;
   std::optional<InitialPose> initial_pose_;
   std::shared_ptr<MapRegistrationProvider> provider_;
+  std::shared_ptr<GnssProvider> gnss_provider_;
   WorldAligner aligner_;
   std::optional<WorldAlignment4Dof> last_alignment_;
   std::optional<FrameEstimate> last_frame_;
