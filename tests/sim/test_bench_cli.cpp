@@ -46,3 +46,26 @@ TEST(BenchCli, TinyFlightTableMetricsAndPlots) {
   fs::remove_all(data);
   fs::remove_all(out);
 }
+
+// A mode the dataset cannot run (the EuRoC excerpt has no GNSS, origin or twin) is noted in the table and the others
+// still run; when nothing can run, exit 2.
+TEST(BenchCli, ModesTheDatasetCannotRunAreNotedNotFatal) {
+  const std::string euroc = std::string(TWINSLAM_SHARED_DIR) + "/data/euroc-v1-01-micro";
+  const fs::path out = fs::temp_directory_path() / ("twinslam_bench_notrun_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const auto both = test::run_process(
+      {test::bin("twinslam"), "bench", euroc, "--out", out.string(), "--modes", "vio,vio-gnss"}, {},
+      std::chrono::seconds(300));
+  ASSERT_EQ(both.exit_code, 0) << both.out << both.err;
+  std::ifstream in(out / "table.md");
+  std::stringstream table;
+  table << in.rdbuf();
+  EXPECT_NE(table.str().find("vio (posyaw)"), std::string::npos) << table.str();
+  EXPECT_NE(table.str().find("Not run on this dataset: vio-gnss (mode 'vio-gnss': the dataset has no GNSS"),
+            std::string::npos) << table.str();
+  const auto none = test::run_process(
+      {test::bin("twinslam"), "bench", euroc, "--out", out.string(), "--modes", "vio-gnss"}, {},
+      std::chrono::seconds(120));
+  EXPECT_EQ(none.exit_code, 2) << none.out << none.err;
+  fs::remove_all(out);
+}
