@@ -29,7 +29,7 @@ bool all_modes_has(const std::string& mode) {
 }
 }  // namespace
 
-bool mode_implemented(const std::string& mode) { return mode != "vio-gnss-loose" && all_modes_has(mode); }
+bool mode_implemented(const std::string& mode) { return all_modes_has(mode) && missing().count(mode) == 0; }
 
 std::string implemented_modes_text() {
   std::string out;

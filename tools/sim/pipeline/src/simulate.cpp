@@ -53,12 +53,15 @@ void write_preview(const fs::path& dir, const Renderer& world, const FlightTraje
 
 // The GNSS model the scenario names: `raytrace` needs the world, so it is built here and handed to the sensor writer;
 // `gaussian` is the writer's own; `learned` is refused rather than silently replaced.
+// Refuses a model that does not exist yet, before anything is built or written.
+void require_gnss_model(const Scenario& scenario) {
+  if (scenario.gnss.model == "gaussian" || scenario.gnss.model == "raytrace") return;
+  throw InputError("gnss.model: '" + scenario.gnss.model +
+                   "' is not implemented yet (the learned model of issue 13); use 'raytrace' or 'gaussian'");
+}
+
 GnssModelFn gnss_model(const Scenario& scenario, const City& city, const fs::path& dir) {
   if (scenario.gnss.model == "gaussian") return {};
-  if (scenario.gnss.model != "raytrace") {
-    throw InputError("gnss.model: '" + scenario.gnss.model +
-                     "' is not implemented yet (the learned model of issue 13); use 'raytrace' or 'gaussian'");
-  }
   return [&scenario, &city, dir](const FlightTrajectory& trajectory) {
     const std::vector<std::int64_t> stamps = sample_stamps(scenario.gnss.rate_hz, trajectory.duration());
     std::vector<Eigen::Vector3d> p_W;
@@ -72,6 +75,7 @@ GnssModelFn gnss_model(const Scenario& scenario, const City& city, const fs::pat
 }  // namespace
 
 SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
+  require_gnss_model(scenario);
   const auto wall0 = std::chrono::steady_clock::now();
   const fs::path dir = options.out;
   fs::create_directories(dir / "mav0/cam0/data");
