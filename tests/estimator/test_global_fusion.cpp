@@ -9,6 +9,7 @@
 
 #include "position_provider.hpp"
 #include "sliding_window_sim.hpp"
+#include "twinslam/core/error.hpp"
 #include "twinslam/estimator/global_fusion.hpp"
 #include "twinslam/geometry/se3.hpp"
 
@@ -234,6 +235,56 @@ TEST(GlobalFusion, FusedGnssFixesHoldTheEstimateInTheWorldFrame) {
   EXPECT_EQ(c.received, fixes);
   EXPECT_GT(c.attached, fixes / 2);
   EXPECT_GT(c.marginalized, 0u);
+}
+
+// vio-gnss-loose on the figure-eight: the same fixes go to the pose graph apart from the window. Once declared, the
+// published alignment is the graph's, its poses stay on the truth, and the window never sees a GNSS term.
+TEST(GlobalFusion, LooseGnssGraphPublishesItsOwnAlignmentAndLeavesTheWindowAlone) {
+  const SimRun run = flight();
+  SlidingWindowEstimator est(window_config(run));
+  GlobalFusionConfig g;
+  g.align_from_gnss = true;
+  g.fuse_gnss_loose = true;
+  g.gnss_correlation_s = 0.0;  // white-noise fixes
+  GlobalFusion fusion(est, g);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  est.initialize_next_frame(run.frames.front().truth);
+  std::size_t imu_next = 0;
+  double sq = 0;
+  int n = 0;
+  for (std::size_t k = 0; k < run.frames.size(); ++k) {
+    const auto& f = run.frames[k];
+    feed_imu(run, est, imu_next, f.stamp_ns);
+    if (k % 4 == 0) {
+      fusion.on_gnss(f.stamp_ns, f.truth.p_L + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)),
+                     Eigen::Matrix3d::Identity());
+    }
+    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
+    fusion.after_frame(e, est.local_map());
+    EXPECT_EQ(fusion.output_T_WL().has_value(), fusion.world_declared()) << "frame " << k;
+    if (fusion.output_T_WL() && f.stamp_ns > run.frames.back().stamp_ns - 10'000'000'000LL) {
+      sq += ((*fusion.output_T_WL() * e.T_LB).translation() - f.truth.p_L).squaredNorm();  // truth: L = W
+      ++n;
+    }
+  }
+  ASSERT_GT(n, 0) << "never declared";
+  EXPECT_LT(std::sqrt(sq / n), 0.6);
+  EXPECT_EQ(fusion.gnss_counts().attached, 0u);  // nothing in the window
+  EXPECT_GT(fusion.loose_counts().solves, 10u);
+  EXPECT_GT(fusion.loose_counts().fixes_used, 40u);
+}
+
+TEST(GlobalFusion, LooseAndTightGnssExcludeEachOther) {
+  GlobalFusionConfig g;
+  g.align_from_gnss = true;
+  g.fuse_gnss = true;
+  g.fuse_gnss_loose = true;
+  EXPECT_THROW(g.validate(), InputError);
+  g.fuse_gnss = false;
+  EXPECT_NO_THROW(g.validate());
+  g.align_from_gnss = false;
+  EXPECT_THROW(g.validate(), InputError);
 }
 
 }  // namespace

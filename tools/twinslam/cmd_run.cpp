@@ -35,6 +35,9 @@ namespace {
 bool uses_twin(const std::string& mode) { return mode.rfind("vio-twin", 0) == 0; }
 // Modes whose estimator fuses GNSS fixes as window terms (tightly coupled).
 bool fuses_gnss(const std::string& mode) { return mode == "vio-gnss" || mode == "vio-twin-gnss"; }
+// The loosely coupled mode: a pose graph apart from the VIO (loose_gnss_fusion.hpp).
+bool fuses_gnss_loose(const std::string& mode) { return mode == "vio-gnss-loose"; }
+bool needs_gnss(const std::string& mode) { return fuses_gnss(mode) || fuses_gnss_loose(mode); }
 
 OdometryRecord to_record(const msg::Odometry& m) {
   const bool estimated = m.status() == msg::ODOM_TRACKING || m.status() == msg::ODOM_ALIGNED;
@@ -81,10 +84,13 @@ int run_pipeline(const RunOptions& o) {
   // Twin modes: W's origin and the twin store (built once per twin content), and how T_WL is first found.
   std::optional<DatasetGeo> geo;
   fs::path twin_store;
-  if (fuses_gnss(o.mode) && dataset.gnss.empty()) {
+  if (needs_gnss(o.mode) && dataset.gnss.empty()) {
     throw UsageError("mode '" + o.mode + "': the dataset has no GNSS (mav0/gnss0)");
   }
-  if (uses_twin(o.mode) || fuses_gnss(o.mode)) geo = read_dataset_geo(dataset.root);
+  if (fuses_gnss_loose(o.mode) && !o.initial_pose.empty()) {
+    throw UsageError("mode '" + o.mode + "': its pose graph starts from the GNSS alignment; --initial-pose is not used");
+  }
+  if (uses_twin(o.mode) || needs_gnss(o.mode)) geo = read_dataset_geo(dataset.root);
   if (uses_twin(o.mode)) {
     if (dataset.gnss.empty() && o.initial_pose.empty()) {
       throw UsageError("mode '" + o.mode + "': the dataset has no GNSS (mav0/gnss0) for the initial alignment; give "
@@ -143,6 +149,7 @@ int run_pipeline(const RunOptions& o) {
       args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
       if (geo) args.insert(args.end(), {"--origin", origin_text(geo->origin)});
       if (fuses_gnss(o.mode)) args.push_back("--fuse-gnss");
+      if (fuses_gnss_loose(o.mode)) args.push_back("--fuse-gnss-loose");
       if (uses_twin(o.mode)) {
         args.push_back("--fuse-registrations");
         // Lockstep: each registration is fused at the same frame in every run, whatever the edge's speed.

@@ -10,9 +10,7 @@ namespace {
 
 // Where each missing mode is being built, for the refusal message.
 const std::map<std::string, std::string>& missing() {
-  static const std::map<std::string, std::string> m{
-      {"vio-gnss-loose", "loosely coupled GNSS + VIO fusion, issue 13"},
-  };
+  static const std::map<std::string, std::string> m{};
   return m;
 }
 

@@ -21,6 +21,7 @@ void bind_fusion_fields(yaml::Fields& fields, GlobalFusionConfig& f) {
       .flag("fuse_registrations", f.fuse_registrations)
       .flag("align_from_gnss", f.align_from_gnss)
       .flag("fuse_gnss", f.fuse_gnss)
+      .flag("fuse_gnss_loose", f.fuse_gnss_loose)
       .number("realign_after_s", f.realign_after_s, "s")
       .number("initial_pose_position_sigma_m", f.initial_pose_position_sigma_m, "m")
       .number("initial_pose_yaw_sigma_deg", f.initial_pose_yaw_sigma_deg, "deg")
@@ -34,7 +35,17 @@ void bind_fusion_fields(yaml::Fields& fields, GlobalFusionConfig& f) {
       .number("registration_huber_delta", f.registration.huber_delta)
       .number("registration_max_reattach_s", f.registration.max_reattach_s, "s")
       .number("gnss_huber_delta", f.gnss.huber_delta)
-      .number("gnss_max_dt_s", f.gnss.max_dt_s, "s");
+      .number("gnss_max_dt_s", f.gnss.max_dt_s, "s")
+      .number("loose_node_interval_s", f.loose.node_interval_s, "s")
+      .integer("loose_window_nodes", f.loose.window_nodes)
+      .number("loose_odometry_sigma_per_m", f.loose.odometry_sigma_per_m)
+      .number("loose_odometry_min_sigma_m", f.loose.odometry_min_sigma_m, "m")
+      .number("loose_odometry_deg_per_m", f.loose.odometry_deg_per_m, "deg/m")
+      .number("loose_odometry_min_sigma_deg", f.loose.odometry_min_sigma_deg, "deg")
+      .number("loose_prior_sigma_m", f.loose.prior_sigma_m, "m")
+      .number("loose_prior_sigma_deg", f.loose.prior_sigma_deg, "deg")
+      .number("loose_huber_delta", f.loose.huber_delta)
+      .integer("loose_max_iterations", f.loose.max_iterations);
 }
 
 }  // namespace

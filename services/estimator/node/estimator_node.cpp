@@ -136,9 +136,11 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
     // the identity guess (T_WB equals T_LB) or a provisional alignment that registration is still refining.
     const bool aligned = e.aligned && fusion_.world_declared() && e.status == EstimatorStatus::kTracking;
     odom.status(aligned ? msg::ODOM_ALIGNED : to_msg(e.status));
+    // vio-gnss-loose: the loose graph's alignment, the window's T_WL otherwise.
+    const Eigen::Isometry3d T_WL = fusion_.output_T_WL().value_or(e.T_WL);
     odom.T_LB(to_msg(e.T_LB));
-    odom.T_WL(to_msg(e.T_WL));
-    odom.T_WB(to_msg(Eigen::Isometry3d(e.T_WL * e.T_LB)));
+    odom.T_WL(to_msg(T_WL));
+    odom.T_WB(to_msg(Eigen::Isometry3d(T_WL * e.T_LB)));
     odom.v_L(to_msg(e.v_L));
     odom.bias_gyro(to_msg(e.bias.gyro));
     odom.bias_accel(to_msg(e.bias.accel));

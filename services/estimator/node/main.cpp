@@ -25,11 +25,14 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_file, "Estimator config YAML (deploy/config/estimator.yaml lists every key)");
   app.add_option("--window", window, "Keyframes in the sliding window (default 8; wins over --config)");
   // Global inputs (paper Sec. III-C/D). Without these the estimator is plain VIO and only counts them.
-  bool fuse_registrations = false, align_gnss = false, fuse_gnss = false, await_registration = false;
+  bool fuse_registrations = false, align_gnss = false, fuse_gnss = false, fuse_gnss_loose = false,
+       await_registration = false;
   std::string origin, initial_pose;
   app.add_flag("--fuse-registrations", fuse_registrations, "Fuse accepted map registrations (eq. 7 through T_WL)");
   app.add_flag("--align-gnss", align_gnss, "Find the initial alignment T_WL from GNSS fixes (eq. 11; needs --origin)");
   app.add_flag("--fuse-gnss", fuse_gnss, "Fuse GNSS fixes as window terms through T_WL once aligned (needs --origin)");
+  app.add_flag("--fuse-gnss-loose", fuse_gnss_loose,
+               "GNSS fixes in a pose graph apart from the VIO, which it leaves untouched (needs --align-gnss)");
   app.add_option("--origin", origin, "W's origin LAT,LON,ALT (deg, deg, m): GNSS fixes are converted to W with it");
   app.add_option("--initial-pose", initial_pose, "\"E N U YAW_DEG\": body pose in W at the first estimate (no GNSS)");
   app.add_flag("--await-registration", await_registration,
@@ -50,10 +53,17 @@ int main(int argc, char** argv) {
     options.fusion.fuse_registrations = options.fusion.fuse_registrations || fuse_registrations;
     options.fusion.align_from_gnss = options.fusion.align_from_gnss || align_gnss;
     options.fusion.fuse_gnss = options.fusion.fuse_gnss || fuse_gnss;
+    options.fusion.fuse_gnss_loose = options.fusion.fuse_gnss_loose || fuse_gnss_loose;
     options.await_registration = await_registration && !service.realtime;
     if (!origin.empty()) options.origin = twinslam::twin::parse_origin(origin);
-    if ((options.fusion.align_from_gnss || options.fusion.fuse_gnss) && !options.origin) {
-      throw twinslam::UsageError("--align-gnss and --fuse-gnss need --origin LAT,LON,ALT (W's origin)");
+    if ((options.fusion.align_from_gnss || options.fusion.fuse_gnss || options.fusion.fuse_gnss_loose) &&
+        !options.origin) {
+      throw twinslam::UsageError("--align-gnss, --fuse-gnss and --fuse-gnss-loose need --origin LAT,LON,ALT (W's origin)");
+    }
+    try {
+      options.fusion.validate();  // flags and config together (e.g. --fuse-gnss-loose without --align-gnss)
+    } catch (const twinslam::InputError& e) {
+      throw twinslam::UsageError(e.what());
     }
     if (!initial_pose.empty()) {
       est::InitialPose p;

@@ -39,7 +39,14 @@ void GlobalFusionConfig::validate() const {
   if (!(realign_after_s >= 0.0) || !std::isfinite(realign_after_s)) {
     throw InputError("global fusion: realign_after_s must be >= 0");
   }
+  if (fuse_gnss_loose && fuse_gnss) {
+    throw InputError("global fusion: fuse_gnss_loose and fuse_gnss exclude each other (loose or tight GNSS)");
+  }
+  if (fuse_gnss_loose && !align_from_gnss) {
+    throw InputError("global fusion: fuse_gnss_loose needs align_from_gnss (the graph starts from that alignment)");
+  }
   aligner.validate();
+  loose.validate();
   registration.validate();
   gnss.validate();
 }
@@ -51,7 +58,8 @@ GlobalFusion::GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusion
       initial_pose_(initial_pose),
       provider_(std::make_shared<MapRegistrationProvider>(config.registration)),
       gnss_provider_(std::make_shared<GnssProvider>(config.gnss)),
-      aligner_(config.aligner) {
+      aligner_(config.aligner),
+      loose_(config.loose) {
   config_.validate();
   if (config_.fuse_registrations) estimator_.add_factor_provider(provider_);
   if (config_.fuse_gnss) estimator_.add_factor_provider(gnss_provider_);
@@ -71,6 +79,7 @@ void GlobalFusion::on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, co
       // counted as received (gnss_in) but not fused: no usable covariance
     }
   }
+  if (config_.fuse_gnss_loose) loose_.add_fix(stamp_ns, p_W, cov_eff);
   if (!config_.align_from_gnss || !last_frame_ || last_frame_->status != EstimatorStatus::kTracking) return;
   // The body position at the fix's stamp from the last estimate and its velocity (the fix is at most one frame
   // interval away: side inputs come with the first frame at or after their stamp).
@@ -153,6 +162,11 @@ void GlobalFusion::check_declaration() {
   aligner_.clear();
 }
 
+std::optional<Eigen::Isometry3d> GlobalFusion::output_T_WL() const {
+  if (config_.fuse_gnss_loose && loose_.started()) return loose_.T_WL();
+  return std::nullopt;
+}
+
 bool GlobalFusion::realignment_helps(const WorldAlignmentSigmas& fit) const {
   // The estimator's own uncertainty of the newest pose in W, as registration sees it: (rotation about W's axes,
   // position in W).
@@ -193,7 +207,12 @@ void GlobalFusion::after_frame(const FrameEstimate& estimate, const std::optiona
       aligner_.clear();
       declared_ = false;
     }
+    loose_.stop();  // the VIO frame L starts anew
     return;
+  }
+  if (config_.fuse_gnss_loose) {
+    loose_.add_odometry(estimate.stamp_ns, estimate.T_LB);
+    if (!loose_.started() && world_declared()) loose_.start(estimator_.world_alignment());
   }
   if (initial_pose_ && !aligned_) {
     // T_WB(now) = T_WL T_LB(now) with the user's position and heading: T_WL = (Rz(yaw - yaw_LB), p - Rz p_LB).

@@ -19,6 +19,7 @@
 #include <optional>
 
 #include "twinslam/estimator/gnss_provider.hpp"
+#include "twinslam/estimator/loose_gnss_fusion.hpp"
 #include "twinslam/estimator/map_registration_provider.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
 #include "twinslam/estimator/world_aligner.hpp"
@@ -29,6 +30,9 @@ struct GlobalFusionConfig {
   bool fuse_registrations = false;      // twin modes
   bool align_from_gnss = false;         // use GNSS fixes for the initial alignment (and re-alignment)
   bool fuse_gnss = false;               // GNSS fixes as window terms once T_WL is set (vio-gnss, vio-twin-gnss)
+  // GNSS fixes in a pose graph apart from the window (vio-gnss-loose): the output T_WL is the graph's, the VIO is
+  // untouched. Starts when the alignment is declared (needs align_from_gnss); not with fuse_gnss.
+  bool fuse_gnss_loose = false;
   // Re-align from GNSS when no registration was accepted for this long after alignment (0: never) [s].
   double realign_after_s = 30.0;
   double initial_pose_position_sigma_m = 5.0;  // prior of a user-given initial pose [m]
@@ -46,6 +50,7 @@ struct GlobalFusionConfig {
   WorldAlignerConfig aligner;
   MapRegistrationProviderConfig registration;
   GnssProviderConfig gnss;
+  LooseGnssFusionConfig loose;
   void validate() const;  // throws twinslam::InputError naming the field
 };
 
@@ -79,6 +84,10 @@ class GlobalFusion {
   const GlobalFusionCounts& counts() const { return counts_; }
   const MapRegistrationCounts& registration_counts() const { return provider_->counts(); }
   const GnssProviderCounts& gnss_counts() const { return gnss_provider_->counts(); }
+  const LooseGnssFusionCounts& loose_counts() const { return loose_.counts(); }
+  // The alignment to publish with the newest frame when it is not the window's: the loose graph's (fuse_gnss_loose,
+  // once started); nothing otherwise.
+  std::optional<Eigen::Isometry3d> output_T_WL() const;
   std::optional<WorldAlignment4Dof> last_alignment() const { return last_alignment_; }
   // T_WL is set and its heading is certain enough to call T_WB a pose in W (Odometry ODOM_ALIGNED).
   bool world_declared() const { return aligned_ && declared_; }
@@ -99,6 +108,7 @@ class GlobalFusion {
   std::shared_ptr<MapRegistrationProvider> provider_;
   std::shared_ptr<GnssProvider> gnss_provider_;
   WorldAligner aligner_;
+  LooseGnssFusion loose_;
   std::optional<WorldAlignment4Dof> last_alignment_;
   std::optional<FrameEstimate> last_frame_;
   std::int64_t last_gnss_ns_ = -1;  // stamp of the previous fix (gnss_correlation_s)
