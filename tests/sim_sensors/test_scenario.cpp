@@ -170,5 +170,69 @@ TEST(SimScenario, YamlEchoReadsBackIdentically) {
   EXPECT_TRUE(r.camera.T_BC->isApprox(*s.camera.T_BC, 0.0));
 }
 
+// Imperfect sensors (issue 13): realistic by default, all off in `tiny`, read, range-checked and echoed.
+TEST(SimScenario, ImperfectSensorKeys) {
+  const Scenario s = parse_scenario_yaml(R"(
+camera: {time_offset_s: -0.02, extrinsic_error_deg: 1.5, extrinsic_error_m: 0.03, auto_exposure_tau_s: 0}
+imu: {gyro_turn_on_bias: 0.01, accel_turn_on_bias: 0.2, gyro_bias_instability: 1e-4, accel_bias_instability: 2e-3,
+      bias_tau_s: 0, gyro_scale_error: 0.01, accel_scale_error: 0, gyro_misalignment: 0.002, accel_misalignment: 0.003}
+)",
+                                         "scen.yaml");
+  EXPECT_DOUBLE_EQ(s.camera.time_offset_s, -0.02);
+  EXPECT_DOUBLE_EQ(s.camera.extrinsic_error_deg, 1.5);
+  EXPECT_DOUBLE_EQ(s.camera.extrinsic_error_m, 0.03);
+  EXPECT_EQ(s.camera.auto_exposure_tau_s, 0);
+  EXPECT_DOUBLE_EQ(s.imu.gyro_turn_on_bias, 0.01);
+  EXPECT_DOUBLE_EQ(s.imu.accel_turn_on_bias, 0.2);
+  EXPECT_DOUBLE_EQ(s.imu.gyro_bias_instability, 1e-4);
+  EXPECT_DOUBLE_EQ(s.imu.accel_bias_instability, 2e-3);
+  EXPECT_EQ(s.imu.bias_tau_s, 0);
+  EXPECT_DOUBLE_EQ(s.imu.gyro_scale_error, 0.01);
+  EXPECT_EQ(s.imu.accel_scale_error, 0);
+  EXPECT_DOUBLE_EQ(s.imu.gyro_misalignment, 0.002);
+  EXPECT_DOUBLE_EQ(s.imu.accel_misalignment, 0.003);
+  EXPECT_EQ(scenario_to_yaml(parse_scenario_yaml(scenario_to_yaml(s), "echo.yaml")), scenario_to_yaml(s));
+
+  const Scenario loops = builtin_scenario("city-loops"), tiny = builtin_scenario("tiny");
+  EXPECT_GT(loops.camera.time_offset_s, 0);
+  EXPECT_GT(loops.camera.extrinsic_error_deg, 0);
+  EXPECT_GT(loops.camera.extrinsic_error_m, 0);
+  EXPECT_GT(loops.camera.auto_exposure_tau_s, 0);
+  EXPECT_GT(loops.imu.gyro_turn_on_bias, 0);
+  EXPECT_EQ(tiny.camera.time_offset_s, 0);
+  EXPECT_EQ(tiny.camera.extrinsic_error_deg, 0);
+  EXPECT_EQ(tiny.camera.extrinsic_error_m, 0);
+  EXPECT_EQ(tiny.camera.auto_exposure_tau_s, 0);
+  for (const double v : {tiny.imu.gyro_turn_on_bias, tiny.imu.accel_turn_on_bias, tiny.imu.gyro_bias_instability,
+                         tiny.imu.accel_bias_instability, tiny.imu.bias_tau_s, tiny.imu.gyro_scale_error,
+                         tiny.imu.accel_scale_error, tiny.imu.gyro_misalignment, tiny.imu.accel_misalignment})
+    EXPECT_EQ(v, 0);
+  // `base: tiny` keeps them off unless the file turns one on.
+  EXPECT_EQ(parse_scenario_yaml("base: tiny\n", "scen.yaml").imu.gyro_scale_error, 0);
+
+  EXPECT_EQ(error_of("camera:\n  extrinsic_error_deg: -1\n"),
+            "scen.yaml:2: camera.extrinsic_error_deg: must be in [0, 10] deg (0 turns it off)");
+  EXPECT_NE(error_of("camera: {extrinsic_error_m: nan}\n")
+                .find("scen.yaml:1: camera.extrinsic_error_m: must be finite"),
+            std::string::npos);
+  EXPECT_NE(error_of("camera: {auto_exposure_tau_s: -0.1}\n").find("camera.auto_exposure_tau_s: must be in [0, 60] s"),
+            std::string::npos);
+  EXPECT_NE(error_of("camera: {time_offset_s: nan}\n").find("camera.time_offset_s: must be finite"),
+            std::string::npos);
+  EXPECT_NE(error_of("camera: {time_offset_s: -0.2}\n").find("camera.time_offset_s: must be in [-0.1, 0.1] s"),
+            std::string::npos);
+  EXPECT_NE(error_of("camera: {time_offset_s: 0.5}\n").find("camera.time_offset_s:"), std::string::npos);
+  for (const char* key : {"gyro_turn_on_bias", "accel_turn_on_bias", "gyro_bias_instability", "accel_bias_instability",
+                          "bias_tau_s", "gyro_scale_error", "accel_scale_error", "gyro_misalignment",
+                          "accel_misalignment"}) {
+    const std::string negative = error_of(std::string("imu: {") + key + ": -1e-3}\n");
+    EXPECT_NE(negative.find(std::string("scen.yaml:1: imu.") + key + ": must be in [0, "), std::string::npos)
+        << negative;
+    const std::string nan = error_of(std::string("imu: {") + key + ": nan}\n");
+    EXPECT_NE(nan.find(std::string("scen.yaml:1: imu.") + key + ": must be finite"), std::string::npos) << nan;
+  }
+  EXPECT_NE(error_of("camera: {time_ofset_s: 0}\n").find("camera.time_ofset_s: unknown key"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace twinslam::sim

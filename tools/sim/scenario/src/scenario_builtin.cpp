@@ -1,5 +1,6 @@
 // Built-in scenarios, `--scenario NAME|FILE.yaml` resolution and the default camera extrinsics.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -40,6 +41,14 @@ Scenario builtin_scenario(const std::string& name) {
     s.trajectory.speed_mps = 3.0;
     s.trajectory.altitude_m = {2, 12};
     s.trajectory.loops = 1;
+    // Ideal sensors, so the tests built on `tiny` see exactly what they always saw.
+    s.camera.time_offset_s = s.camera.extrinsic_error_deg = s.camera.extrinsic_error_m = 0;
+    s.camera.auto_exposure_tau_s = 0;
+    s.camera.line_time_us = s.camera.exposure_ms = 0;
+    s.traffic.cars = 0;
+    ImuSimConfig& imu = s.imu;
+    imu.gyro_turn_on_bias = imu.accel_turn_on_bias = imu.gyro_bias_instability = imu.accel_bias_instability = 0;
+    imu.bias_tau_s = imu.gyro_scale_error = imu.accel_scale_error = imu.gyro_misalignment = imu.accel_misalignment = 0;
   } else if (name == "city-loops") {
     // Three loops around the tallest building, about 500 m in 5 min (1.7 m/s over 296 s of cruise).
     s.trajectory.speed_mps = 1.7;
@@ -83,7 +92,14 @@ Scenario load_scenario(const std::string& name_or_file) {
   text << in.rdbuf();
   Scenario base;
   base.name = name_or_file;
-  return parse_scenario_yaml(text.str(), name_or_file, base);
+  Scenario s = parse_scenario_yaml(text.str(), name_or_file, base);
+  // A relative city.path is relative to the scenario file's folder (made absolute, so dataset.yaml's echo reads back
+  // from anywhere).
+  if (s.city.path && !s.city.path->empty() && std::filesystem::path(*s.city.path).is_relative())
+    s.city.path = std::filesystem::absolute(std::filesystem::path(name_or_file).parent_path() / *s.city.path)
+                      .lexically_normal()
+                      .string();
+  return s;
 }
 
 }  // namespace twinslam::sim

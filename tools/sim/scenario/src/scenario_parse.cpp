@@ -74,7 +74,15 @@ void read_trajectory(const YamlReader& r, const YAML::Node& n, TrajectoryConfig&
 void read_camera(const YamlReader& r, const YAML::Node& n, CameraSimConfig& c) {
   r.expect_map(n, "camera");
   if (!n) return;
-  r.check_keys(n, "camera.", {"model", "width", "height", "rate_hz", "fov_deg", "T_BC"});
+  r.check_keys(n, "camera.", {"model", "width", "height", "rate_hz", "fov_deg", "T_BC",
+                              "time_offset_s", "extrinsic_error_deg", "extrinsic_error_m", "auto_exposure_tau_s",
+                              "line_time_us", "exposure_ms"});
+  r.read(n, "camera.", "time_offset_s", c.time_offset_s);
+  r.read(n, "camera.", "extrinsic_error_deg", c.extrinsic_error_deg);
+  r.read(n, "camera.", "extrinsic_error_m", c.extrinsic_error_m);
+  r.read(n, "camera.", "auto_exposure_tau_s", c.auto_exposure_tau_s);
+  r.read(n, "camera.", "line_time_us", c.line_time_us);
+  r.read(n, "camera.", "exposure_ms", c.exposure_ms);
   r.read(n, "camera.", "model", c.model);
   r.read(n, "camera.", "width", c.width);
   r.read(n, "camera.", "height", c.height);
@@ -96,12 +104,23 @@ void read_camera(const YamlReader& r, const YAML::Node& n, CameraSimConfig& c) {
 void read_imu(const YamlReader& r, const YAML::Node& n, ImuSimConfig& c) {
   r.expect_map(n, "imu");
   if (!n) return;
-  r.check_keys(n, "imu.", {"rate_hz", "gyro_noise", "accel_noise", "gyro_walk", "accel_walk"});
+  r.check_keys(n, "imu.", {"rate_hz", "gyro_noise", "accel_noise", "gyro_walk", "accel_walk", "gyro_turn_on_bias",
+                           "accel_turn_on_bias", "gyro_bias_instability", "accel_bias_instability", "bias_tau_s",
+                           "gyro_scale_error", "accel_scale_error", "gyro_misalignment", "accel_misalignment"});
   r.read(n, "imu.", "rate_hz", c.rate_hz);
   r.read(n, "imu.", "gyro_noise", c.gyro_noise);
   r.read(n, "imu.", "accel_noise", c.accel_noise);
   r.read(n, "imu.", "gyro_walk", c.gyro_walk);
   r.read(n, "imu.", "accel_walk", c.accel_walk);
+  r.read(n, "imu.", "gyro_turn_on_bias", c.gyro_turn_on_bias);
+  r.read(n, "imu.", "accel_turn_on_bias", c.accel_turn_on_bias);
+  r.read(n, "imu.", "gyro_bias_instability", c.gyro_bias_instability);
+  r.read(n, "imu.", "accel_bias_instability", c.accel_bias_instability);
+  r.read(n, "imu.", "bias_tau_s", c.bias_tau_s);
+  r.read(n, "imu.", "gyro_scale_error", c.gyro_scale_error);
+  r.read(n, "imu.", "accel_scale_error", c.accel_scale_error);
+  r.read(n, "imu.", "gyro_misalignment", c.gyro_misalignment);
+  r.read(n, "imu.", "accel_misalignment", c.accel_misalignment);
 }
 
 void read_gnss(const YamlReader& r, const YAML::Node& n, GnssSimConfig& c) {
@@ -111,6 +130,14 @@ void read_gnss(const YamlReader& r, const YAML::Node& n, GnssSimConfig& c) {
   r.read(n, "gnss.", "rate_hz", c.rate_hz);
   r.read(n, "gnss.", "model", c.model);
   r.read(n, "gnss.", "sigma_m", c.sigma_m);
+}
+
+void read_traffic(const YamlReader& r, const YAML::Node& n, TrafficSimConfig& c) {
+  r.expect_map(n, "traffic");
+  if (!n) return;
+  r.check_keys(n, "traffic.", {"cars", "speed_mps"});
+  r.read(n, "traffic.", "cars", c.cars);
+  r.read(n, "traffic.", "speed_mps", c.speed_mps);
 }
 
 void read_shifted_buildings(const YamlReader& r, const YAML::Node& n, ShiftedBuildings& c) {
@@ -148,7 +175,8 @@ Scenario parse_scenario_yaml(const std::string& text, const std::string& file, c
   std::map<std::string, std::size_t> lines;
   const YamlReader r(file, lines);
   if (!root.IsMap()) r.fail(root, "(top level)", "expected a mapping of keys");
-  r.check_keys(root, "", {"name", "base", "seed", "origin", "city", "trajectory", "camera", "imu", "gnss", "twin"});
+  r.check_keys(root, "", {"name", "base", "seed", "origin", "city", "trajectory", "camera", "imu", "gnss", "twin",
+                         "traffic"});
 
   Scenario s = base;
   if (const YAML::Node b = root["base"]) {
@@ -164,10 +192,12 @@ Scenario parse_scenario_yaml(const std::string& text, const std::string& file, c
   r.read(root, "", "name", s.name);
   r.read(root, "", "seed", s.seed);
   read_origin(r, root["origin"], s.origin);
+  if (root["origin"]) s.origin_given = true;
   read_city(r, root["city"], s.city);
   read_imu(r, root["imu"], s.imu);
   read_gnss(r, root["gnss"], s.gnss);
   read_twin(r, root["twin"], s.twin);
+  read_traffic(r, root["traffic"], s.traffic);
 
   // Without camera.T_BC in the file, a base whose extrinsics were the default of its trajectory type gets the default of
   // the (possibly changed) type, so `base: city-loops` with `type: survey` looks down-forward like any survey.

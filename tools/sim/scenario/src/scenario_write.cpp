@@ -56,9 +56,20 @@ std::string scenario_to_yaml(const Scenario& s) {
   o << "camera:\n  model: " << s.camera.model << "\n  width: " << s.camera.width << "\n  height: " << s.camera.height
     << "\n  rate_hz: " << num(s.camera.rate_hz) << "\n  fov_deg: " << num(s.camera.fov_deg)
     << "\n  T_BC: " << list(T_rows) << "   # body <- camera, row-major 4x4\n";
+  o << "  time_offset_s: " << num(s.camera.time_offset_s) << "\n  extrinsic_error_deg: "
+    << num(s.camera.extrinsic_error_deg) << "\n  extrinsic_error_m: " << num(s.camera.extrinsic_error_m)
+    << "\n  auto_exposure_tau_s: " << num(s.camera.auto_exposure_tau_s)
+    << "\n  line_time_us: " << num(s.camera.line_time_us) << "\n  exposure_ms: " << num(s.camera.exposure_ms) << "\n";
   o << "imu: {rate_hz: " << num(s.imu.rate_hz) << ", gyro_noise: " << num(s.imu.gyro_noise)
     << ", accel_noise: " << num(s.imu.accel_noise) << ", gyro_walk: " << num(s.imu.gyro_walk)
-    << ", accel_walk: " << num(s.imu.accel_walk) << "}\n";
+    << ", accel_walk: " << num(s.imu.accel_walk) << ",\n      gyro_turn_on_bias: " << num(s.imu.gyro_turn_on_bias)
+    << ", accel_turn_on_bias: " << num(s.imu.accel_turn_on_bias)
+    << ", gyro_bias_instability: " << num(s.imu.gyro_bias_instability)
+    << ", accel_bias_instability: " << num(s.imu.accel_bias_instability) << ", bias_tau_s: " << num(s.imu.bias_tau_s)
+    << ",\n      gyro_scale_error: " << num(s.imu.gyro_scale_error)
+    << ", accel_scale_error: " << num(s.imu.accel_scale_error)
+    << ", gyro_misalignment: " << num(s.imu.gyro_misalignment)
+    << ", accel_misalignment: " << num(s.imu.accel_misalignment) << "}\n";
   o << "gnss: {rate_hz: " << num(s.gnss.rate_hz) << ", model: " << s.gnss.model << ", sigma_m: " << num(s.gnss.sigma_m)
     << "}\n";
   o << "twin: {noise_m: " << num(s.twin.noise_m) << ", missing_buildings: " << s.twin.missing_buildings
@@ -66,6 +77,7 @@ std::string scenario_to_yaml(const Scenario& s) {
     << list(std::array<double, 3>{s.twin.offset_m.x(), s.twin.offset_m.y(), s.twin.offset_m.z()})
     << ", shifted_buildings: {count: " << s.twin.shifted_buildings.count
     << ", offset_m: " << num(s.twin.shifted_buildings.offset_m) << "}}\n";
+  o << "traffic: {cars: " << s.traffic.cars << ", speed_mps: " << num(s.traffic.speed_mps) << "}\n";
   return o.str();
 }
 

@@ -23,6 +23,10 @@ class Checker {
   }
   void positive(double v, const std::string& key) const { require(v > 0, key, "must be > 0"); }
   void non_negative(double v, const std::string& key) const { require(v >= 0, key, "must be >= 0"); }
+  // An imperfection's size: 0 (off) up to hi; negative and NaN refused.
+  void magnitude(double v, double hi, const std::string& key, const std::string& unit) const {
+    require(v >= 0 && v <= hi, key, "must be in [0, " + fmt(hi) + "] " + unit + " (0 turns it off)");
+  }
   void in_range(double v, double lo, double hi, const std::string& key) const {
     require(v >= lo && v <= hi, key, "must be in [" + fmt(lo) + ", " + fmt(hi) + "]");
   }
@@ -93,16 +97,39 @@ void validate_scenario_at(const Scenario& s, const std::string& file, const std:
   c.require(s.camera.fov_deg > 0 && s.camera.fov_deg <= max_fov, "camera.fov_deg",
             "must be > 0 and <= " + std::to_string(static_cast<int>(max_fov)) + " for " + s.camera.model);
   if (s.camera.T_BC) check_T_BC(c, *s.camera.T_BC);
+  c.require(std::abs(s.camera.time_offset_s) <= 0.1, "camera.time_offset_s",
+            "must be in [-0.1, 0.1] s (0 turns it off)");  // also refuses NaN
+  c.magnitude(s.camera.extrinsic_error_deg, 10, "camera.extrinsic_error_deg", "deg");
+  c.magnitude(s.camera.extrinsic_error_m, 0.5, "camera.extrinsic_error_m", "m");
+  c.magnitude(s.camera.auto_exposure_tau_s, 60, "camera.auto_exposure_tau_s", "s");
+  // A row's readout and a frame's exposure both fit in the frame period.
+  const double frame_us = 1e6 / s.camera.rate_hz;
+  c.require(s.camera.line_time_us >= 0 && s.camera.line_time_us * s.camera.height <= frame_us, "camera.line_time_us",
+            "must be >= 0 with line_time_us x height within a frame period (1e6 / rate_hz us) (0 turns it off)");
+  c.require(s.camera.exposure_ms >= 0 && s.camera.exposure_ms <= frame_us / 1000, "camera.exposure_ms",
+            "must be >= 0 and at most a frame period (1000 / rate_hz ms) (0 turns it off)");
 
   c.require(s.imu.rate_hz > 0 && s.imu.rate_hz <= 10000, "imu.rate_hz", "must be > 0 and <= 10000");
   c.non_negative(s.imu.gyro_noise, "imu.gyro_noise");
   c.non_negative(s.imu.accel_noise, "imu.accel_noise");
   c.non_negative(s.imu.gyro_walk, "imu.gyro_walk");
   c.non_negative(s.imu.accel_walk, "imu.accel_walk");
+  c.magnitude(s.imu.gyro_turn_on_bias, 1, "imu.gyro_turn_on_bias", "rad/s");
+  c.magnitude(s.imu.accel_turn_on_bias, 2, "imu.accel_turn_on_bias", "m/s^2");
+  c.magnitude(s.imu.gyro_bias_instability, 0.1, "imu.gyro_bias_instability", "rad/s");
+  c.magnitude(s.imu.accel_bias_instability, 1, "imu.accel_bias_instability", "m/s^2");
+  c.magnitude(s.imu.bias_tau_s, 1e5, "imu.bias_tau_s", "s");
+  c.magnitude(s.imu.gyro_scale_error, 0.2, "imu.gyro_scale_error", "(fraction)");
+  c.magnitude(s.imu.accel_scale_error, 0.2, "imu.accel_scale_error", "(fraction)");
+  c.magnitude(s.imu.gyro_misalignment, 0.2, "imu.gyro_misalignment", "rad");
+  c.magnitude(s.imu.accel_misalignment, 0.2, "imu.accel_misalignment", "rad");
 
   c.require(s.gnss.rate_hz > 0 && s.gnss.rate_hz <= 100, "gnss.rate_hz", "must be > 0 and <= 100");
   c.one_of(s.gnss.model, {"raytrace", "learned", "gaussian"}, "gnss.model");
   c.require(s.gnss.sigma_m > 0 && s.gnss.sigma_m <= 100, "gnss.sigma_m", "must be > 0 and <= 100");
+
+  c.require(s.traffic.cars >= 0 && s.traffic.cars <= 10000, "traffic.cars", "must be in [0, 10000] (0 turns it off)");
+  c.magnitude(s.traffic.speed_mps, 40, "traffic.speed_mps", "m/s (0: the cars stand still)");
 
   c.non_negative(s.twin.noise_m, "twin.noise_m");
   c.require(s.twin.missing_buildings >= 0, "twin.missing_buildings", "must be >= 0");

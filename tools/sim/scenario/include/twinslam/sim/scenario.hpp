@@ -46,6 +46,23 @@ struct CameraSimConfig {
   // Camera extrinsics (body/IMU <- camera; C: x right, y down, z optical axis). Unset in a file = the default for the
   // trajectory type (default_T_BC in scenario_io.hpp); load_scenario() and builtin_scenario() always fill it.
   std::optional<Eigen::Isometry3d> T_BC;
+  // Imperfections (0 turns one off; the built-in `tiny` has them all off). Time offset: the image stamped t was exposed
+  // at t - time_offset_s on the IMU clock (stamped late, as by a host clock on arrival); a few ms is what a camera
+  // stamped by its driver shows without hardware triggering.
+  double time_offset_s = 0.005;               // [s], may be negative
+  // The T_BC written to cam0/sensor.yaml is the true one (rendered with) turned by extrinsic_error_deg about a seeded
+  // axis and moved by extrinsic_error_m in a seeded direction: the residual of a good Kalibr camera-IMU calibration
+  // (a few tenths of a degree; translation, weakly observable, to about a centimetre).
+  double extrinsic_error_deg = 0.5;           // [deg]
+  double extrinsic_error_m = 0.01;            // [m]
+  // Auto-exposure: the gain follows the scene's mean brightness toward a target with this time constant [s]
+  // (pipeline/auto_exposure.hpp). An ISP's loop settles in about a second.
+  double auto_exposure_tau_s = 0.3;           // [s]
+  // Rolling shutter: row r is read (r - (height - 1) / 2) * line_time_us after the image's time, which is that of the
+  // middle row (30 us x 400 rows = a 12 ms readout, a common CMOS sensor's). Motion blur: each row integrates the true
+  // motion over exposure_ms centred on its own time (a few ms in daylight). 0 turns either off.
+  double line_time_us = 30;                   // [us]
+  double exposure_ms = 5;                     // [ms]
 };
 
 struct ImuSimConfig {
@@ -54,11 +71,25 @@ struct ImuSimConfig {
   double accel_noise = 8.0e-3;                // [m/s^2/sqrt(Hz)]
   double gyro_walk = 3.0e-5;                  // bias random walk density [rad/s^2/sqrt(Hz)]
   double accel_walk = 1.0e-4;                 // [m/s^3/sqrt(Hz)]
+  // Consumer MEMS errors beyond the densities above (which are all imu0/sensor.yaml states); imu_sim.hpp has the model.
+  // Defaults from the TDK InvenSense ICM-20602 datasheet (DS-000176 v1.0): initial zero-rate offset +-1 deg/s,
+  // zero-g offset +-25 mg, sensitivity tolerance +-1 %, cross-axis sensitivity +-2 %; per-axis standard deviations of
+  // half those bounds. Bias instability as an Allan-variance floor of that class (about 10 deg/h, 0.1 mg at
+  // 100-200 s), as a first-order Gauss-Markov process of std 1.5x the floor and correlation time bias_tau_s.
+  double gyro_turn_on_bias = 8.7e-3;          // std per axis of the bias at power-on [rad/s] (0.5 deg/s)
+  double accel_turn_on_bias = 0.12;           // [m/s^2] (12 mg)
+  double gyro_bias_instability = 7.3e-5;      // std of the Gauss-Markov bias [rad/s] (15 deg/h)
+  double accel_bias_instability = 1.5e-3;     // [m/s^2] (0.15 mg)
+  double bias_tau_s = 100;                    // its correlation time [s]
+  double gyro_scale_error = 5e-3;             // std per axis of the scale-factor error [-] (0.5 %)
+  double accel_scale_error = 5e-3;            // [-]
+  double gyro_misalignment = 0.01;            // std of each cross-axis coupling [rad] (1 %)
+  double accel_misalignment = 0.01;           // [rad]
 };
 
 struct GnssSimConfig {
   double rate_hz = 5;                         // [Hz]
-  std::string model = "raytrace";             // raytrace (city geometry) | gaussian (sigma_m) | learned (refused)
+  std::string model = "raytrace";             // raytrace (city geometry) | learned (GP + GMM) | gaussian (sigma_m)
   double sigma_m = 1.5;                       // gaussian: horizontal standard deviation [m]
 };
 
@@ -78,16 +109,27 @@ struct TwinConfig {
   ShiftedBuildings shifted_buildings;         // buildings misplaced in the twin
 };
 
+// Moving cars on the procedural city's street grid (world/traffic.hpp): in the images and the ideal feature tracks, not
+// in the twin nor in the GNSS ray tracing. 0 cars = none; a world without a street grid has none.
+struct TrafficSimConfig {
+  int cars = 60;                              // cars in the city (60: about one per 110 m of street in the default city)
+  double speed_mps = 8;                       // their speed [m/s] (0: they stand still in their lanes)
+};
+
 struct Scenario {
   std::string name = "custom";
   std::uint64_t seed = 7;
   Origin origin;
+  // True when the scenario file itself names `origin:`. A real city (city.source other than procedural) without it
+  // is placed at its model's centre at ground level instead (sim writes that origin into dataset.yaml).
+  bool origin_given = false;
   CityConfig city;
   TrajectoryConfig trajectory;
   CameraSimConfig camera;
   ImuSimConfig imu;
   GnssSimConfig gnss;
   TwinConfig twin;
+  TrafficSimConfig traffic;
 };
 
 // Street grid of a procedural city: the centrelines of the streets between blocks (not the outer ring at the city's
