@@ -55,8 +55,16 @@ Eigen::Vector3d integrate(const std::vector<ImuSample>& imu, const FlightState& 
   return x.p_W;
 }
 
+// The ideal model of the densities alone: the consumer-grade errors (turn-on bias, instability, scale factor,
+// misalignment; test_imu_errors.cpp) off.
+ImuSimConfig without_device_errors(ImuSimConfig c) {
+  c.gyro_turn_on_bias = c.accel_turn_on_bias = c.gyro_bias_instability = c.accel_bias_instability = 0;
+  c.gyro_scale_error = c.accel_scale_error = c.gyro_misalignment = c.accel_misalignment = 0;
+  return c;
+}
+
 ImuSimConfig noise_free() {
-  ImuSimConfig c;
+  ImuSimConfig c = without_device_errors({});
   c.gyro_noise = c.accel_noise = c.gyro_walk = c.accel_walk = 0;
   return c;
 }
@@ -94,6 +102,7 @@ TEST(SimImu, NoiseAndBiasWalkHaveTheStatedDensities) {
   sc.imu.accel_noise = 2e-2;
   sc.imu.gyro_walk = 1e-4;
   sc.imu.accel_walk = 1e-3;
+  sc.imu = without_device_errors(sc.imu);
   const FlightTrajectory f = make_flight_trajectory(sc, hints_for(sc));
   const std::vector<ImuSample> imu = simulate_imu(f, sc.imu, 42);
   const double dt = 1.0 / sc.imu.rate_hz;

@@ -4,6 +4,7 @@
 
 #include "number_format.hpp"
 #include "twinslam/core/error.hpp"
+#include "twinslam/sim/camera_calibration.hpp"
 #include "twinslam/sim/clock.hpp"
 #include "twinslam/sim/scenario_io.hpp"
 #include "twinslam/trajectory/io.hpp"
@@ -53,6 +54,31 @@ void append_twin(std::string& y, const TwinReference& twin) {
     y += "]";
   }
   y += "]   # their shift [east, north] in W, same order\n";
+}
+
+template <typename Matrix>
+void append_rows(std::string& y, const char* key, const Matrix& m, const char* comment) {
+  y += std::string("  ") + key + ": [";
+  for (int r = 0; r < m.rows(); ++r)
+    for (int c = 0; c < m.cols(); ++c) {
+      if (r || c) y += ", ";
+      append_number(y, m(r, c));
+    }
+  y += "]   # " + std::string(comment) + "\n";
+}
+
+// The true imperfections (CONTRACTS.md "Scenario file"), which no calibration file of the dataset states.
+void append_sensor_errors(std::string& y, const Scenario& scenario) {
+  y += "sensor_errors:   # the truth behind the calibration files, for evaluation only\n  camera_time_offset_s: ";
+  append_number(y, scenario.camera.time_offset_s);
+  y += "   # image stamp - exposure time (IMU clock)\n";
+  append_rows(y, "T_BC_true", camera_T_BC(scenario).matrix(), "body <- camera of the images, row-major");
+  append_rows(y, "T_BC_calibrated", calibrated_T_BC(scenario).matrix(), "what mav0/cam0/sensor.yaml states");
+  const ImuDeviceErrors imu = imu_device_errors(scenario.imu, scenario.seed);
+  append_rows(y, "imu_gyro_matrix", imu.gyro_matrix, "gyro = M w_B + b_g + n, row-major");
+  append_rows(y, "imu_accel_matrix", imu.accel_matrix, "accel = M f_B + b_a + n, row-major");
+  append_rows(y, "imu_gyro_turn_on_bias", imu.gyro_turn_on_bias.transpose(), "[rad/s], part of the ground-truth bias");
+  append_rows(y, "imu_accel_turn_on_bias", imu.accel_turn_on_bias.transpose(), "[m/s^2]");
 }
 
 }  // namespace
@@ -132,6 +158,7 @@ void write_dataset_yaml(const fs::path& dir, const Scenario& scenario, const Twi
   y += "}   # W = ENU at this WGS84 point (GeographicLib LocalCartesian)\n";
   y += "stamp_epoch_ns: " + std::to_string(kEpochNs) + "   # stamp of simulation time 0\n";
   append_twin(y, twin);
+  append_sensor_errors(y, scenario);
   y += "scenario:\n";
   const std::string echo = scenario_to_yaml(scenario);
   std::size_t start = 0;

@@ -5,7 +5,10 @@
 
 namespace twinslam::sim::detail {
 
-enum class Stream : std::uint32_t { Imu = 1, Gnss = 2, Route = 3, GnssRaytrace = 4 };  // 4: pipeline/gnss_raytrace.cpp
+enum class Stream : std::uint32_t {
+  Imu = 1, Gnss = 2, Route = 3, GnssRaytrace = 4,  // 4: pipeline/gnss_raytrace.cpp
+  ImuDevice = 11, ImuInstability = 12, CameraExtrinsics = 13  // imperfect sensors (issue 13)
+};
 
 inline std::mt19937_64 make_rng(std::uint64_t seed, Stream stream) {
   std::seed_seq seq{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),

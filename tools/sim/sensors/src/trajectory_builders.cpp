@@ -123,6 +123,13 @@ LoopsGeometry loops_geometry(const Scenario& sc, const SceneHints& hints) {
   // 3 m inside the clear zone around it when the world says how large that is.
   double hi = hints.tall_building_radius_m + 30.0;
   if (hints.clear_radius_m > 0) hi = std::min(hi, hints.clear_radius_m - 3.0);
+  if (hi < hints.tall_building_radius_m + 3.0) {  // a real city's neighbours can stand that close (real_city.hpp)
+    std::ostringstream m;
+    m << "trajectory.altitude_m: no room to loop around the tallest building: something else stands "
+      << hints.clear_radius_m << " m from its centre at the flight's height (its own corners are "
+      << hints.tall_building_radius_m << " m out, a ring needs 3 m on either side); fly above it";
+    throw InputError(where(sc.name, 0, m.str()));
+  }
   const double lo = std::min(hints.tall_building_radius_m + 6.0, hi);
   g.radius_m = std::clamp(length / (2 * M_PI * cfg.loops), lo, hi);
   g.turns = length / (2 * M_PI * g.radius_m);
