@@ -101,6 +101,9 @@ CityJsonModel load_cityjson(const std::string& path, const LoadOptions& options,
       problem = "not a JSON object";
     } else {
       info.type = object.value("type", std::string());
+      if (const auto parents = object.find("parents"); parents != object.end() && parents->is_array())
+        for (const json& parent : *parents)
+          if (parent.is_string()) info.parents.push_back(parent.get<std::string>());
       const auto geometry = object.find("geometry");
       if (geometry == object.end() || (geometry->is_array() && geometry->empty())) continue;  // e.g. a parent
       problem = triangulate_city_object(*geometry, p_W, info.lod, triangles, rep, where(path, 0, "CityObject '" + id + "'"));

@@ -136,7 +136,8 @@ void add_twin_only_buildings(const City& world, const TwinConfig& config, Rng* r
     const Eigen::Vector4d& lot = world.empty_lots_W[lots[k]];
     const int id = static_cast<int>(world.buildings.size()) + k;
     const double h = world.layout.floor_height_m * (3 + rng->integer(5));
-    const Eigen::Vector3d lo(lot[0] + 3, lot[1] + 3, 0), hi(lot[2] - 3, lot[3] - 3, h);
+    const double z0 = world.hints.ground_z_m;  // 0 in the procedural city; a loaded city's ground
+    const Eigen::Vector3d lo(lot[0] + 3, lot[1] + 3, z0), hi(lot[2] - 3, lot[3] - 3, z0 + h);
     add_box(&twin->mesh, lo + config.offset_m, hi + config.offset_m, SurfaceKind::kFacade, SurfaceKind::kRoof, id);
     twin->added_building_ids.push_back(id);
   }

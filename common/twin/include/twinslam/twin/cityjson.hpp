@@ -20,6 +20,7 @@ struct CityObjectInfo {
   std::string id;
   std::string type;            // "Building", "BuildingPart", "Road", ...
   std::string lod;             // the LoD used, as written ("2", "2.2")
+  std::vector<std::string> parents;  // ids of its parent objects (a BuildingPart's Building), as the file lists them
   std::size_t first_triangle = 0;
   std::size_t num_triangles = 0;
 };

@@ -4,6 +4,7 @@
 // trajectory circles it), roof structures, a ground plane, and the details a twin does not have (floor bands that set
 // the window rows back, balconies, rooftop boxes, trees, parked cars). Deterministic per seed.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -27,6 +28,10 @@ struct Building {
   std::vector<Eigen::Vector4d> rects_W;     // footprint as union of rectangles [min e, min n, max e, max n]
   double height_m = 0;                      // eave (main roof) height above ground [m]
   double top_m = 0;                         // highest point incl. roof structures [m]
+  // Loaded cities (real_city.hpp): the height of the ground it stands on [m, W up] (0 in the procedural city) and its
+  // identity in the source file (CityJSON object id, "osm way 123", "component 7"); heights above are above base_z_m.
+  double base_z_m = 0;
+  std::string name;
 };
 
 struct City {
