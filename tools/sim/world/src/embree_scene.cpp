@@ -105,6 +105,7 @@ struct ClosestQuery {
   const TriMesh* mesh;
   Eigen::Vector3d p_W;
   double best_m;
+  std::uint32_t best_triangle = 0;
 };
 
 bool closest_callback(RTCPointQueryFunctionArguments* args) {
@@ -115,6 +116,7 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
   const double d = (c - q->p_W).norm();
   if (d < q->best_m) {
     q->best_m = d;
+    q->best_triangle = args->primID;
     args->query->radius = static_cast<float>(d);  // shrink the search ball
     return true;
   }
@@ -123,7 +125,7 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
 
 }  // namespace
 
-double EmbreeScene::closest_distance(const Eigen::Vector3d& p_W, double max_m) const {
+double EmbreeScene::closest_distance(const Eigen::Vector3d& p_W, double max_m, std::uint32_t* triangle) const {
   ClosestQuery q{&mesh_, p_W, std::numeric_limits<double>::infinity()};
   RTCPointQuery query;
   query.x = static_cast<float>(p_W.x());
@@ -134,6 +136,7 @@ double EmbreeScene::closest_distance(const Eigen::Vector3d& p_W, double max_m) c
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(impl_->scene, &query, &context, closest_callback, &q);
+  if (triangle != nullptr && q.best_m <= max_m) *triangle = q.best_triangle;
   return q.best_m <= max_m ? q.best_m : std::numeric_limits<double>::infinity();
 }
 

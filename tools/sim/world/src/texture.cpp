@@ -94,4 +94,36 @@ float albedo(const Eigen::Vector3d& p, const Eigen::Vector3d& n, SurfaceKind kin
   return std::clamp(v, 0.0f, 0.72f);
 }
 
+float car_albedo(const Eigen::Vector3d& p_V, const Eigen::Vector3d& n_V, int part, float paint, double footprint_m) {
+  // Parts and sizes as traffic.cpp builds them: body 0.25-1.0 m high, cabin 1.0 m up to 1.42-1.55 m from x = -0.7 l
+  // to 0.4 l (l = half the length, 2.1-2.4 m), wheels. Thresholds in absolute metres fit every car of that range.
+  if (part == 2) return 0.06f;  // tyres
+  const double x = p_V.x(), y = std::abs(p_V.y()), z = p_V.z();
+  const Eigen::Vector3d a = n_V.cwiseAbs();
+  float detail = paint;
+  double size_m = 1.0;  // how large the pattern is, for fading it out at a distance
+  if (part == 1) {      // cabin: glass all round between the pillars, painted roof
+    if (a.y() > 0.7) {
+      if (x > -1.45 && x < 0.75 && std::abs(x + 0.35) > 0.07 && z > 1.06 && z < 1.36) detail = 0.1f;
+    } else if (a.x() > 0.7) {
+      if (y < 0.68 && z > 1.06 && z < 1.37) detail = n_V.x() > 0 ? 0.12f : 0.09f;
+    }
+  } else if (a.x() > 0.7) {  // body front and back: bumper, lights, grille
+    size_m = 0.3;
+    if (z < 0.45) detail = 0.1f;
+    else if (n_V.x() > 0 && y > 0.5 && y < 0.8 && z > 0.65 && z < 0.85) detail = 0.7f;   // headlights
+    else if (n_V.x() > 0 && y < 0.35 && z > 0.5 && z < 0.8) detail = 0.08f;             // grille
+    else if (n_V.x() < 0 && y > 0.55 && y < 0.85 && z > 0.7 && z < 0.9) detail = 0.22f; // tail lights
+  } else if (a.y() > 0.7) {  // body sides: dark sill, a door gap
+    size_m = 0.3;
+    if (z < 0.42) detail = 0.1f;
+    else if (std::abs(x + 0.35) < 0.03 || std::abs(x - 0.75) < 0.03) detail = 0.5f * paint;
+  }
+  float v = paint + keep(size_m, footprint_m) * (detail - paint);
+  const double s = a.z() > 0.7 ? x : a.x() > 0.7 ? p_V.y() : x;
+  const float grain = value_noise(s * 6.0, z * 6.0, 61) - 0.5f;  // paint and dirt, 0.17 m
+  v += 0.06f * keep(0.35, footprint_m) * grain;
+  return std::clamp(v, 0.0f, 0.72f);
+}
+
 }  // namespace twinslam::sim

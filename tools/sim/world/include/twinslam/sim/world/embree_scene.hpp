@@ -30,7 +30,8 @@ class EmbreeScene {
                  RayHit* hit) const;
 
   // Distance [m] from p_W to the nearest surface point, searched up to max_m; +infinity if nothing is that close.
-  double closest_distance(const Eigen::Vector3d& p_W, double max_m) const;
+  // triangle (optional) receives the index of the nearest triangle when one is found.
+  double closest_distance(const Eigen::Vector3d& p_W, double max_m, std::uint32_t* triangle = nullptr) const;
 
   void* rtc_scene() const;  // RTCScene, for packet tracing in the renderer
 

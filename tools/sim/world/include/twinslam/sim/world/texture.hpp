@@ -12,4 +12,9 @@ namespace twinslam::sim {
 float albedo(const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W, SurfaceKind kind, int building,
              double footprint_m);
 
+// Albedo of a moving car (traffic.hpp) from its point and normal in the car's own frame V, so the pattern moves with
+// the car: `paint`, glass all round the cabin between its pillars, dark sills and bumpers, light clusters front and
+// back, black tyres. part: CarPart (0 body, 1 cabin, 2 wheel).
+float car_albedo(const Eigen::Vector3d& p_V, const Eigen::Vector3d& n_V, int part, float paint, double footprint_m);
+
 }  // namespace twinslam::sim
