@@ -30,6 +30,18 @@ TEST(Plot, LineIsDrawnInsideTheAxes) {
   EXPECT_GT(count_color(img, Rgb{255, 0, 0}), 500);  // a ~870 px long, 3 px thick line (plus the legend sample)
 }
 
+TEST(Plot, AScatterDrawsDotsAndNoLineBetweenThem) {
+  LinePlot p;
+  // Two dots inside the axes (and two at the corners, which set the range and are clipped).
+  Line dots{"", {0.0, 3.0, 7.0, 10.0}, {0.0, 7.0, 3.0, 10.0}, Rgb{0, 160, 0}, 1};
+  dots.marker_px = 4;
+  p.lines.push_back(dots);
+  const cv::Mat img = p.render();
+  const int n = count_color(img, Rgb{0, 160, 0});
+  EXPECT_GT(n, 2 * 20);   // two filled dots of radius 4 px (about 30 px of exact colour each)
+  EXPECT_LT(n, 4 * 60);   // and no 2000 px of polyline between them
+}
+
 TEST(Plot, EqualAspectKeepsMetresSquare) {
   // A 10 m x 10 m square outline: drawn with equal aspect, its pixel width and height match.
   LinePlot p;

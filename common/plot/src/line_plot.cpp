@@ -64,7 +64,12 @@ cv::Mat LinePlot::render() const {
     std::vector<cv::Point> pts;
     pts.reserve(l.x.size());
     for (std::size_t i = 0; i < l.x.size() && i < l.y.size(); ++i) pts.push_back(f.to_px(l.x[i], l.y[i]));
-    if (pts.size() == 1) {
+    if (l.marker_px > 0) {
+      for (const cv::Point& q : pts) {
+        cv::circle(inside, q, l.marker_px << detail::kShift, detail::bgr(l.color), cv::FILLED, cv::LINE_AA,
+                   detail::kShift);
+      }
+    } else if (pts.size() == 1) {
       cv::circle(inside, pts[0], 3 << detail::kShift, detail::bgr(l.color), cv::FILLED, cv::LINE_AA, detail::kShift);
     } else if (!pts.empty()) {
       cv::polylines(inside, pts, false, detail::bgr(l.color), l.thickness, cv::LINE_AA, detail::kShift);

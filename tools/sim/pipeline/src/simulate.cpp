@@ -8,17 +8,23 @@
 
 #include "progress.hpp"
 #include "twinslam/camera/sensor_yaml.hpp"
+#include "twinslam/sim/auto_exposure.hpp"
+#include "twinslam/sim/camera_calibration.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/sim/clock.hpp"
 #include "twinslam/sim/dataset_writer.hpp"
+#include "twinslam/sim/flight_clearance.hpp"
 #include "twinslam/sim/flight_surroundings.hpp"
+#include "twinslam/sim/gnss_learned.hpp"
 #include "twinslam/sim/gnss_raytrace.hpp"
 #include "twinslam/sim/scenario_io.hpp"
 #include "twinslam/sim/sim_camera.hpp"
 #include "twinslam/sim/world/city.hpp"
 #include "twinslam/sim/world/ply.hpp"
+#include "twinslam/sim/world/real_city.hpp"
 #include "twinslam/sim/world/surface_distance.hpp"
 #include "twinslam/sim/world/top_down.hpp"
+#include "twinslam/sim/world/traffic.hpp"
 #include "twinslam/sim/world/twin.hpp"
 
 namespace twinslam::sim {
@@ -51,13 +57,13 @@ void write_preview(const fs::path& dir, const Renderer& world, const FlightTraje
   }
 }
 
-// The GNSS model the scenario names: `raytrace` needs the world, so it is built here and handed to the sensor writer;
-// `gaussian` is the writer's own; `learned` is refused rather than silently replaced.
-// Refuses a model that does not exist yet, before anything is built or written.
+// The GNSS model the scenario names: `raytrace` and `learned` need the world, so they are built here and handed to
+// the sensor writer; `gaussian` is the writer's own.
 void require_gnss_model(const Scenario& scenario) {
-  if (scenario.gnss.model == "gaussian" || scenario.gnss.model == "raytrace") return;
-  throw InputError("gnss.model: '" + scenario.gnss.model +
-                   "' is not implemented yet (the learned model of issue 13); use 'raytrace' or 'gaussian'");
+  if (scenario.gnss.model == "gaussian" || scenario.gnss.model == "raytrace" || scenario.gnss.model == "learned") {
+    return;
+  }
+  throw InputError("gnss.model: '" + scenario.gnss.model + "' is not a GNSS model; use raytrace, learned or gaussian");
 }
 
 GnssModelFn gnss_model(const Scenario& scenario, const City& city, const fs::path& dir) {
@@ -67,6 +73,9 @@ GnssModelFn gnss_model(const Scenario& scenario, const City& city, const fs::pat
     std::vector<Eigen::Vector3d> p_W;
     for (const std::int64_t s : stamps) p_W.push_back(trajectory.at(time_s(s)).p_W);
     const EmbreeScene world(city.mesh);
+    if (scenario.gnss.model == "learned") {
+      return run_learned_gnss(dir, stamps, p_W, city.hints, scenario.origin, world, scenario.seed).fixes;
+    }
     RaytraceGnss g = simulate_gnss_raytrace(stamps, p_W, scenario.origin, world, scenario.seed);
     write_pseudoranges(dir, g.pseudoranges);
     return std::move(g.fixes);
@@ -76,21 +85,26 @@ GnssModelFn gnss_model(const Scenario& scenario, const City& city, const fs::pat
 
 SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
   require_gnss_model(scenario);
+  // A real city without `origin:` is placed at its model's centre at ground level; W and dataset.yaml follow.
+  if (scenario.city.source != "procedural" && !scenario.origin_given) {
+    Scenario placed = scenario;
+    placed.origin = real_city_origin(scenario);
+    placed.origin_given = true;
+    return simulate(placed, options);
+  }
   const auto wall0 = std::chrono::steady_clock::now();
   const fs::path dir = options.out;
   fs::create_directories(dir / "mav0/cam0/data");
   fs::create_directories(dir / "twin");
   SimSummary summary;
 
-  // World (reality) and twin (what the map says), from the same seed.
-  if (scenario.city.source != "procedural") {
-    throw InputError("city.source: '" + scenario.city.source +
-                     "' needs the twin-format loaders (not available yet); use 'procedural'");
-  }
-  // The twin's changes hit the buildings a streets flight passes, so the flight is planned first.
-  const City city = build_city(scenario.city, scenario.seed);
-  const std::vector<int> seen =
-      twin_change_candidates(scenario, city.hints, make_flight_trajectory(scenario, city.hints));
+  // World (reality) and twin (what the map says), from the same seed: the procedural city or a real city model
+  // (real_city.hpp). The twin's changes hit the buildings a streets flight passes, so the flight is planned first,
+  // and it must keep clear of the world.
+  const City city = build_world_city(scenario);
+  const FlightTrajectory flight = make_flight_trajectory(scenario, city.hints);
+  require_flight_clearance(scenario, city, flight);
+  const std::vector<int> seen = twin_change_candidates(scenario, city.hints, flight);
   const Twin twin = derive_twin(city, scenario.twin, scenario.seed, seen);
   write_ply((dir / "twin/twin.ply").string(), twin.mesh, scenario.origin);
   summary.world_triangles = city.mesh.num_triangles();
@@ -105,12 +119,16 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
   summary.duration_s = sensors.trajectory.duration();
 
   // Camera: calibration file, then one rendered image per frame.
-  const CameraConfig camera_cfg = sim_camera_config(scenario);
-  write_camera_sensor_yaml(dir / "mav0/cam0/sensor.yaml", camera_cfg);
+  const CameraConfig camera_cfg = sim_camera_config(scenario);  // the true camera: images and tracks
+  CameraConfig stated_cfg = camera_cfg;                           // the calibration: camera.extrinsic_error_*
+  stated_cfg.T_BC = calibrated_T_BC(scenario);
+  write_camera_sensor_yaml(dir / "mav0/cam0/sensor.yaml", stated_cfg);
   const auto camera = make_camera(camera_cfg.intrinsics);
   RenderConfig render_cfg;
   render_cfg.threads = options.render_threads;
   const Renderer renderer(city.mesh, render_cfg);
+  // traffic.*: cars on the street grid, in the images and the tracks only (not in city.mesh, so not in the twin or GNSS).
+  const Traffic traffic(city.hints, scenario.traffic, sensors.trajectory.duration(), scenario.seed);
 
   std::unique_ptr<FeatureTrackWriter> tracks;
   if (options.features) {
@@ -130,18 +148,26 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
   std::vector<cv::Mat> preview_frames;
   const std::vector<int> png{cv::IMWRITE_PNG_COMPRESSION, 1};
   Eigen::Vector3d previous_p = sensors.trajectory.at(0).p_W;
+  AutoExposure exposure(auto_exposure_config(scenario));
   for (std::size_t k = 0; k < stamps.size(); ++k) {
-    const double t = time_s(stamps[k]);
+    // camera.time_offset_s: the frame stamped stamps[k] was exposed at t on the IMU clock (the trajectory's time).
+    const double t = time_s(stamps[k]) - scenario.camera.time_offset_s;
     const FlightState state = sensors.trajectory.at(t);
     summary.path_length_m += (state.p_W - previous_p).norm();
     previous_p = state.p_W;
-    const Eigen::Isometry3d T_WC = state.T_WB() * camera_cfg.T_BC;
-    if (tracks) summary.feature_rows += tracks->add_frame(stamps[k], T_WC, *camera, renderer);
+    // The frame as the camera takes it: each row at its own time (camera.line_time_us), blurred over
+    // camera.exposure_ms, with the cars where they are then.
+    FrameCapture frame;
+    frame.t_s = t;
+    frame.T_WC = [&](double t_row) { return sensors.trajectory.at(t_row).T_WB() * camera_cfg.T_BC; };
+    frame.shutter = {scenario.camera.line_time_us * 1e-6, scenario.camera.exposure_ms * 1e-3};
+    frame.traffic = &traffic;
+    if (tracks) summary.feature_rows += tracks->add_frame(stamps[k], frame, *camera, renderer);
     if (!options.images) {
       progress.update(k + 1);
       continue;
     }
-    const cv::Mat image = renderer.render(T_WC, *camera, scenario.seed * 1000003ULL + k);
+    const cv::Mat image = exposure.apply(renderer.render(frame, *camera, scenario.seed * 1000003ULL + k));
     const std::string name = std::to_string(stamps[k]) + ".png";
     if (!cv::imwrite((dir / "mav0/cam0/data" / name).string(), image, png)) {
       throw InputError((dir / "mav0/cam0/data" / name).string() + ": cannot write");

@@ -23,6 +23,7 @@ struct Line {
   std::vector<double> x, y;
   Rgb color;
   int thickness = 2;  // [px]
+  int marker_px = 0;  // > 0: a scatter: each point a dot of this radius [px], no line between them
 };
 
 struct LinePlot {
