@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <random>
 
@@ -198,8 +199,45 @@ TEST(GlobalFusion, CorrelatedGnssErrorsDoNotDeclareAnOverconfidentHeading) {
 }
 
 
-// vio-gnss on the figure-eight: fixes (truth + 1 m white noise) align T_WL and then act as window terms. After the
-// declaration the estimate in W stays on the truth, and every fix is accounted for (fused, or counted unmatched).
+// Flies the figure-eight with a fix (truth + 1 m white noise) every 4th frame through GlobalFusion configured by `g`.
+// Returns the RMS position error in W over the last 10 s of frames where `T_WL` (read after each frame) has a value,
+// and how many fixes were sent. Truth: L = W.
+struct NoisyFixFlight {
+  double rms_m = 0;
+  int frames = 0;
+  std::size_t fixes = 0;
+};
+NoisyFixFlight fly_with_noisy_fixes(
+    const SimRun& run, GlobalFusion& fusion, SlidingWindowEstimator& est,
+    const std::function<std::optional<Eigen::Isometry3d>(std::size_t)>& T_WL) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  est.initialize_next_frame(run.frames.front().truth);
+  std::size_t imu_next = 0;
+  NoisyFixFlight out;
+  double sq = 0;
+  for (std::size_t k = 0; k < run.frames.size(); ++k) {
+    const auto& f = run.frames[k];
+    feed_imu(run, est, imu_next, f.stamp_ns);
+    if (k % 4 == 0) {
+      fusion.on_gnss(f.stamp_ns, f.truth.p_L + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)),
+                     Eigen::Matrix3d::Identity());
+      ++out.fixes;
+    }
+    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
+    fusion.after_frame(e, est.local_map());
+    const std::optional<Eigen::Isometry3d> alignment = T_WL(k);
+    if (alignment && f.stamp_ns > run.frames.back().stamp_ns - 10'000'000'000LL) {
+      sq += ((*alignment * e.T_LB).translation() - f.truth.p_L).squaredNorm();
+      ++out.frames;
+    }
+  }
+  if (out.frames > 0) out.rms_m = std::sqrt(sq / out.frames);
+  return out;
+}
+
+// vio-gnss on the figure-eight: fixes align T_WL and then act as window terms. After the declaration the estimate in W
+// stays on the truth, and every fix is accounted for (fused, or counted unmatched).
 TEST(GlobalFusion, FusedGnssFixesHoldTheEstimateInTheWorldFrame) {
   const SimRun run = flight();
   SlidingWindowEstimator est(window_config(run));
@@ -208,32 +246,14 @@ TEST(GlobalFusion, FusedGnssFixesHoldTheEstimateInTheWorldFrame) {
   g.fuse_gnss = true;
   g.gnss_correlation_s = 0.0;  // white-noise fixes
   GlobalFusion fusion(est, g);
-  std::mt19937 rng(11);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  est.initialize_next_frame(run.frames.front().truth);
-  std::size_t imu_next = 0, fixes = 0;
-  double sq = 0;
-  int n = 0;
-  for (std::size_t k = 0; k < run.frames.size(); ++k) {
-    const auto& f = run.frames[k];
-    feed_imu(run, est, imu_next, f.stamp_ns);
-    if (k % 4 == 0) {
-      fusion.on_gnss(f.stamp_ns, f.truth.p_L + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)),
-                     Eigen::Matrix3d::Identity());
-      ++fixes;
-    }
-    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
-    fusion.after_frame(e, est.local_map());
-    if (fusion.world_declared() && f.stamp_ns > run.frames.back().stamp_ns - 10'000'000'000LL) {
-      sq += ((est.world_alignment() * e.T_LB).translation() - f.truth.p_L).squaredNorm();  // truth: L = W
-      ++n;
-    }
-  }
-  ASSERT_GT(n, 0) << "never declared";
-  EXPECT_LT(std::sqrt(sq / n), 0.5);  // 1 m fixes averaged by the window and the prior
+  const NoisyFixFlight r = fly_with_noisy_fixes(run, fusion, est, [&](std::size_t) {
+    return fusion.world_declared() ? std::optional<Eigen::Isometry3d>(est.world_alignment()) : std::nullopt;
+  });
+  ASSERT_GT(r.frames, 0) << "never declared";
+  EXPECT_LT(r.rms_m, 0.5);  // 1 m fixes averaged by the window and the prior
   const GnssProviderCounts& c = fusion.gnss_counts();
-  EXPECT_EQ(c.received, fixes);
-  EXPECT_GT(c.attached, fixes / 2);
+  EXPECT_EQ(c.received, r.fixes);
+  EXPECT_GT(c.attached, r.fixes / 2);
   EXPECT_GT(c.marginalized, 0u);
 }
 
@@ -247,29 +267,12 @@ TEST(GlobalFusion, LooseGnssGraphPublishesItsOwnAlignmentAndLeavesTheWindowAlone
   g.fuse_gnss_loose = true;
   g.gnss_correlation_s = 0.0;  // white-noise fixes
   GlobalFusion fusion(est, g);
-  std::mt19937 rng(11);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  est.initialize_next_frame(run.frames.front().truth);
-  std::size_t imu_next = 0;
-  double sq = 0;
-  int n = 0;
-  for (std::size_t k = 0; k < run.frames.size(); ++k) {
-    const auto& f = run.frames[k];
-    feed_imu(run, est, imu_next, f.stamp_ns);
-    if (k % 4 == 0) {
-      fusion.on_gnss(f.stamp_ns, f.truth.p_L + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)),
-                     Eigen::Matrix3d::Identity());
-    }
-    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
-    fusion.after_frame(e, est.local_map());
+  const NoisyFixFlight r = fly_with_noisy_fixes(run, fusion, est, [&](std::size_t k) {
     EXPECT_EQ(fusion.output_T_WL().has_value(), fusion.world_declared()) << "frame " << k;
-    if (fusion.output_T_WL() && f.stamp_ns > run.frames.back().stamp_ns - 10'000'000'000LL) {
-      sq += ((*fusion.output_T_WL() * e.T_LB).translation() - f.truth.p_L).squaredNorm();  // truth: L = W
-      ++n;
-    }
-  }
-  ASSERT_GT(n, 0) << "never declared";
-  EXPECT_LT(std::sqrt(sq / n), 0.6);
+    return fusion.output_T_WL();
+  });
+  ASSERT_GT(r.frames, 0) << "never declared";
+  EXPECT_LT(r.rms_m, 0.6);
   EXPECT_EQ(fusion.gnss_counts().attached, 0u);  // nothing in the window
   EXPECT_GT(fusion.loose_counts().solves, 10u);
   EXPECT_GT(fusion.loose_counts().fixes_used, 40u);
