@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "corner_measure.hpp"
+#include "frame_tracks.hpp"
 #include "sim_world_test_utils.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/sim/feature_tracks.hpp"
@@ -27,6 +28,7 @@ namespace twinslam::sim {
 namespace {
 
 using testing::look_at;
+using testing::tracks_of;
 using testing::measured_corner;
 using testing::pinhole_90;
 
@@ -67,36 +69,6 @@ Eigen::Vector2d rolling_projection(const FrameCapture& f, const CameraModel& cam
   return uv;
 }
 
-// The tracks FeatureTrackWriter writes for one frame: id -> (u, v).
-std::map<std::size_t, Eigen::Vector2d> tracks_of(const std::vector<Eigen::Vector3d>& landmarks_W,
-                                                 const FrameCapture& frame, const CameraModel& cam,
-                                                 const Renderer& world, std::string* text = nullptr,
-                                                 const FeatureTrackConfig& config = {}) {
-  const auto file = std::filesystem::temp_directory_path() /
-                    ("twinslam_tracks_" + std::to_string(::getpid()) + "_" +
-                     ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".csv");
-  {
-    FeatureTrackWriter writer(file, landmarks_W, config, 5);
-    writer.add_frame(1000, frame, cam, world);
-  }
-  std::ifstream in(file);
-  std::stringstream all;
-  all << in.rdbuf();
-  if (text) *text = all.str();
-  std::map<std::size_t, Eigen::Vector2d> out;
-  std::istringstream lines(all.str());
-  std::string line;
-  while (std::getline(lines, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    long long stamp;
-    std::size_t id;
-    double u, v, un, vn;
-    EXPECT_EQ(std::sscanf(line.c_str(), "%lld,%zu,%lf,%lf,%lf,%lf", &stamp, &id, &u, &v, &un, &vn), 6);
-    out[id] = {u, v};
-  }
-  std::filesystem::remove(file);
-  return out;
-}
 
 // A camera 120 rows above whose middle row the corner appears, rolled so the edges slant (see test_render).
 Eigen::Isometry3d corner_view() {

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "frame_tracks.hpp"
 #include "sim_world_test_utils.hpp"
 #include "twinslam/sim/feature_tracks.hpp"
 #include "twinslam/sim/flight_trajectory.hpp"
@@ -29,6 +30,7 @@ namespace twinslam::sim {
 namespace {
 
 using testing::look_at;
+using testing::tracks_of;
 using testing::pinhole_90;
 
 const City& city() {
@@ -197,29 +199,6 @@ TEST(SimTraffic, CarsAreNeitherInTheWorldNorInTheTwin) {
 }
 
 // The rows of features.csv: id -> (u, v).
-std::map<std::size_t, Eigen::Vector2d> tracks_of(const std::vector<Eigen::Vector3d>& landmarks,
-                                                 const FrameCapture& frame, const CameraModel& cam,
-                                                 const Renderer& world, const FeatureTrackConfig& config) {
-  const auto file =
-      std::filesystem::temp_directory_path() / ("twinslam_car_tracks_" + std::to_string(::getpid()) + ".csv");
-  {
-    FeatureTrackWriter writer(file, landmarks, config, 5);
-    writer.add_frame(1000, frame, cam, world);
-  }
-  std::ifstream in(file);
-  std::map<std::size_t, Eigen::Vector2d> out;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    long long stamp;
-    std::size_t id;
-    double u, v, un, vn;
-    EXPECT_EQ(std::sscanf(line.c_str(), "%lld,%zu,%lf,%lf,%lf,%lf", &stamp, &id, &u, &v, &un, &vn), 6);
-    out[id] = {u, v};
-  }
-  std::filesystem::remove(file);
-  return out;
-}
 
 TEST(SimTraffic, TracksLoseWhatACarHidesAndFollowTheCarsOwnLandmarks) {
   const CarView& view = car_view();
@@ -234,10 +213,10 @@ TEST(SimTraffic, TracksLoseWhatACarHidesAndFollowTheCarsOwnLandmarks) {
   FeatureTrackConfig config;
   config.landmarks_per_car = 30;  // (6 by default) enough that several face the camera
   const std::size_t per_car = 30;
-  const auto without = tracks_of({under_car}, frame, *cam, r, config);
+  const auto without = tracks_of({under_car}, frame, *cam, r, nullptr, config);
   EXPECT_EQ(without.count(0), 1u);  // seen on the empty street
   frame.traffic = &traffic();
-  const auto with = tracks_of({under_car}, frame, *cam, r, config);
+  const auto with = tracks_of({under_car}, frame, *cam, r, nullptr, config);
   EXPECT_EQ(with.count(0), 0u);  // hidden by the car
   // The car's own landmarks (ids 1 + car * 30 + j): those seen lie on the car in the image, and the next frame finds
   // them where the car has taken them.
@@ -247,7 +226,7 @@ TEST(SimTraffic, TracksLoseWhatACarHidesAndFollowTheCarsOwnLandmarks) {
   cv::dilate(mask, mask, cv::Mat::ones(3, 3, CV_8UC1));
   FrameCapture later = frame;
   later.t_s = view.t + 0.1;
-  const auto next = tracks_of({under_car}, later, *cam, r, config);
+  const auto next = tracks_of({under_car}, later, *cam, r, nullptr, config);
   int on_car = 0;
   for (std::size_t j = 0; j < per_car; ++j) {
     const std::size_t id = 1 + view.car * per_car + j;
