@@ -2,7 +2,10 @@
 // run, a run that disagrees, or a stale one is not.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
+
+#include <Eigen/Geometry>
 
 #include "twinslam/registration/persistence_gate.hpp"
 
@@ -13,7 +16,8 @@ RegistrationResult refused(double dx_m, double dyaw_deg = 0.0) {
   RegistrationResult r;
   r.status = RegistrationStatus::kCorrectionTooLarge;
   r.reason = "correction's Mahalanobis distance^2 90 > max_mahalanobis_sq 22.46";
-  r.correction_xi << 0, 0, dyaw_deg * M_PI / 180.0, dx_m, 0.1, 0;
+  r.correction_xi << 0, 0, dyaw_deg * M_PI / 180.0, dx_m, 0.1, 0;  // about the keyframe at the origin of W
+  r.correction_W = Eigen::Translation3d(dx_m, 0.1, 0) * Eigen::AngleAxisd(dyaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ());
   r.details.information = Matrix6d::Identity() * 7.0;
   r.mahalanobis_sq = 90.0;
   return r;
@@ -90,6 +94,37 @@ TEST(RegistrationPersistenceGate, LargeCorrectionsAgreeWithinAShareOfThemselves)
   RegistrationResult c = refused(2.0), d = refused(2.5);
   EXPECT_FALSE(gate.review(c, at(3)));
   EXPECT_FALSE(gate.review(d, at(4)));  // 0.5 m apart, beyond max(0.3, 0.25) m
+}
+
+// An estimate whose heading is 4 deg off about W's origin, seen from keyframes flying around a tower 30 m from it: each
+// registration finds the same dT of W, but its correction about the keyframe changes by metres along the circle.
+RegistrationResult refused_heading(double yaw_error_deg, double along_circle_rad) {
+  RegistrationResult r;
+  r.status = RegistrationStatus::kCorrectionTooLarge;
+  r.pivot_W = Eigen::Vector3d(30.0 * std::cos(along_circle_rad), 30.0 * std::sin(along_circle_rad), 10.0);
+  r.correction_W = Eigen::Isometry3d(Eigen::AngleAxisd(yaw_error_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
+  // About the pivot c: dR and dp = dT(c) - c (icp.hpp).
+  r.correction_xi << 0, 0, yaw_error_deg * M_PI / 180.0, r.correction_W * r.pivot_W - r.pivot_W;
+  r.details.information = Matrix6d::Identity();
+  return r;
+}
+
+TEST(RegistrationPersistenceGate, AWholeFrameHeadingErrorAgreesFromKeyframesAroundTheCircle) {
+  PersistenceGate gate(config(5, 10.0));
+  for (int k = 0; k < 10; ++k) {  // a keyframe a second, 1.7 m apart on the circle (0.057 rad)
+    RegistrationResult r = refused_heading(4.0, 0.057 * k);
+    EXPECT_FALSE(gate.review(r, at(k)));
+  }
+  const RegistrationResult first = refused_heading(4.0, 0.0), last = refused_heading(4.0, 0.057 * 10);
+  ASSERT_GT((first.correction_xi.tail<3>() - last.correction_xi.tail<3>()).norm(), 1.0);  // about the keyframes
+  RegistrationResult r = refused_heading(4.0, 0.057 * 10);
+  EXPECT_TRUE(gate.review(r, at(10)));  // the same dT of W for 10 s
+  // A heading error that changes by 2 deg between keyframes is not one correction.
+  PersistenceGate other(config(3, 2.0));
+  for (int k = 0; k < 6; ++k) {
+    RegistrationResult s = refused_heading(4.0 + 2.0 * k, 0.057 * k);
+    EXPECT_FALSE(other.review(s, at(k)));
+  }
 }
 
 TEST(RegistrationPersistenceGate, ZeroTurnsItOff) {

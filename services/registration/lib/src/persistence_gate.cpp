@@ -7,13 +7,13 @@
 
 namespace twinslam::registration {
 
-bool PersistenceGate::agrees(const Vector6d& a, const Vector6d& b) const {
-  // Keyframes a second apart pivot about positions ~1 m apart: a 1 deg rotation moves the translation by < 2 cm. A
-  // large correction means a fast-drifting estimator, whose corrections change by a share of themselves in a span.
+bool PersistenceGate::agrees(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const Eigen::Vector3d& p_W) const {
+  // b is the newest correction and p_W its keyframe: a large correction means a fast-drifting estimator, whose
+  // corrections change by a share of themselves in a span.
   const double tolerance_m =
-      std::max(config_.persistent_tolerance_m, config_.persistent_tolerance_fraction * b.tail<3>().norm());
-  return (a.head<3>() - b.head<3>()).norm() <= config_.persistent_tolerance_deg * M_PI / 180.0 &&
-         (a.tail<3>() - b.tail<3>()).norm() <= tolerance_m;
+      std::max(config_.persistent_tolerance_m, config_.persistent_tolerance_fraction * (b * p_W - p_W).norm());
+  const double angle_rad = Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle();
+  return angle_rad <= config_.persistent_tolerance_deg * M_PI / 180.0 && (a * p_W - b * p_W).norm() <= tolerance_m;
 }
 
 bool PersistenceGate::review(RegistrationResult& r, std::int64_t stamp_ns) {
@@ -26,9 +26,9 @@ bool PersistenceGate::review(RegistrationResult& r, std::int64_t stamp_ns) {
                                                 [&](const Refusal& f) { return f.stamp_ns >= stale_ns; }));
   // The run: the newest refusals that all agree with this one (a drifting estimator's corrections change slowly).
   std::size_t first = refused_.size();
-  while (first > 0 && agrees(refused_[first - 1].xi, r.correction_xi)) --first;
+  while (first > 0 && agrees(refused_[first - 1].correction_W, r.correction_W, r.pivot_W)) --first;
   refused_.erase(refused_.begin(), refused_.begin() + static_cast<std::ptrdiff_t>(first));
-  refused_.push_back({stamp_ns, r.correction_xi});
+  refused_.push_back({stamp_ns, r.correction_W});
   const double span_s = 1e-9 * static_cast<double>(stamp_ns - refused_.front().stamp_ns);
   if (refused_.size() < static_cast<std::size_t>(config_.persistent_corrections) || span_s < config_.persistent_span_s)
     return false;

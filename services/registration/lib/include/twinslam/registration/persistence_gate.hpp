@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "twinslam/registration/registration.hpp"
 
 namespace twinslam::registration {
@@ -19,9 +21,13 @@ class PersistenceGate {
 
   // Call with each result of one vehicle in keyframe order (stamp_ns: its keyframe's). A kCorrectionTooLarge result
   // is accepted (status kAccepted, information from its details, a reason saying so) when the refusals of the last
-  // 2 x persistent_span_s end in a run of at least persistent_corrections that all agree with it (rotation within
-  // persistent_tolerance_deg, translation within the larger of persistent_tolerance_m and persistent_tolerance_fraction
-  // of its own) and span at least persistent_span_s: consecutive LocalMaps share most landmarks, so only refusals a
+  // 2 x persistent_span_s end in a run of at least persistent_corrections that all agree with it and span at least
+  // persistent_span_s. Two corrections agree when, as transforms of W (correction_W, the dT of eq. 3), they move
+  // the newest keyframe's position to within the larger of persistent_tolerance_m and persistent_tolerance_fraction of
+  // its own correction, and turn by persistent_tolerance_deg at most of each other. Compared in W, not about each
+  // keyframe: an estimate whose whole frame is off (a T_WL heading error of 4 deg, say) needs the same dT of W from
+  // every keyframe, while its correction about a keyframe 30 m from the turn's centre changes by 1.2 m as the vehicle
+  // flies 17 m. Why a span: consecutive LocalMaps share most landmarks, so only refusals a
   // landmark horizon apart are nearly independent looks. Accepted results in between do not break a run. Returns
   // true when it re-admitted `r`. Off when config.persistent_corrections is 0.
   bool review(RegistrationResult& r, std::int64_t stamp_ns);
@@ -29,12 +35,12 @@ class PersistenceGate {
   std::size_t readmitted() const { return readmitted_; }
 
  private:
-  bool agrees(const Vector6d& a, const Vector6d& b) const;
+  bool agrees(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const Eigen::Vector3d& p_W) const;
 
   RegistrationConfig config_;
   struct Refusal {
     std::int64_t stamp_ns;
-    Vector6d xi;  // correction (rotation, translation) about the keyframe
+    Eigen::Isometry3d correction_W;  // dT of W (eq. 3) that registration found
   };
   std::vector<Refusal> refused_;  // the current run of agreeing refusals (none older than 2 spans), oldest first
   std::size_t readmitted_ = 0;
