@@ -1,5 +1,7 @@
 #include "subprocess.hpp"
 
+#include "twinslam/process/domain_claim.hpp"
+
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -101,6 +103,7 @@ std::string Background::output() const { return slurp(log_); }
 
 std::string bin(const std::string& name) { return std::string(TWINSLAM_BIN_DIR) + "/" + name; }
 
-int test_domain() { return 10 + static_cast<int>(getpid() % 80); }
+// Claimed on this host (domain_claim.hpp), so parallel test processes never share one.
+int test_domain() { return process::claim_dds_domain(10, 80, static_cast<unsigned>(getpid())); }
 
 }  // namespace twinslam::test

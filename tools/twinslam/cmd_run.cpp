@@ -26,6 +26,7 @@
 #include "twinslam/core/shutdown.hpp"
 #include "twinslam/ingest/dataset.hpp"
 #include "twinslam/ingest/features.hpp"
+#include "twinslam/process/domain_claim.hpp"
 #include "twinslam/process/supervisor.hpp"
 
 namespace twinslam::cli {
@@ -70,7 +71,8 @@ RegistrationRecord to_record(const msg::Registration& m) {
 int pick_domain(int requested) {
   if (requested >= 0) return requested;
   if (const char* env = std::getenv("TWINSLAM_DOMAIN"); env != nullptr && *env != '\0') return std::atoi(env);
-  return 100 + static_cast<int>(getpid() % 100);  // private per run: parallel runs and tests stay apart
+  // Private per run, claimed on this host (domain_claim.hpp): parallel runs and tests stay apart.
+  return process::claim_dds_domain(100, 100, static_cast<unsigned>(getpid()));
 }
 
 }  // namespace
