@@ -216,7 +216,6 @@ RaytraceGnss simulate_gnss_learned(const std::vector<std::int64_t>& stamps_ns, c
   std::uniform_real_distribution<double> uniform(0, 1);
   const LocalFrame frame(origin);
   const std::vector<OrbitElements> almanac = nominal_constellation();
-  const ReceiverConfig receiver;
   const LearnedGenerationConfig& g = learned.generation;
   const auto share = [&](double elevation_deg) {
     if (learned.received_share.empty()) return 1.0;
@@ -237,13 +236,8 @@ RaytraceGnss simulate_gnss_learned(const std::vector<std::int64_t>& stamps_ns, c
   std::map<std::pair<int, int>, SatelliteState> states;
   double z_count = normal(rng);  // the count's deviation from the GP mean, in its predictive standard deviations
 
-  RaytraceGnss out;
-  Eigen::Vector3d guess = Eigen::Vector3d::Zero();  // the receiver starts from the Earth's centre, not the truth
-  for (std::size_t i = 0; i < stamps_ns.size(); ++i) {
-    const double dt = i == 0 ? 0 : time_s(stamps_ns[i]) - time_s(stamps_ns[i - 1]);
-    advance_epoch(i == 0, dt, m, e);
-    const double t_rx = m.sky_epoch_s + time_s(stamps_ns[i]);
-    const Eigen::Vector3d rx_ecef = frame.to_ecef(p_W[i]);
+  const auto observe = [&](std::size_t i, double dt, double t_rx, const Eigen::Vector3d& rx_ecef, Epoch& epoch,
+                           RaytraceGnss& out) {
     const double keep_count = i == 0 ? 0 : std::exp(-dt / g.count_tau_s);
     const double keep_error = i == 0 ? 0 : std::exp(-dt / g.error_tau_s);
     const auto step = [&](double x, double keep) { return keep * x + std::sqrt(1 - keep * keep) * normal(rng); };
@@ -276,7 +270,6 @@ RaytraceGnss simulate_gnss_learned(const std::vector<std::int64_t>& stamps_ns, c
     if (i > 0) z_count = step(z_count, keep_count);
     const std::size_t n = static_cast<std::size_t>(std::clamp(
         std::lround(count.mean + std::sqrt(count.var_y) * z_count), 0L, static_cast<long>(sky.size())));
-    Epoch epoch{t_rx, {}};
     for (std::size_t j = 0; j < sky.size(); ++j) {
       SatelliteState& st = *sky[j].state;
       if (j >= n) {
@@ -306,13 +299,8 @@ RaytraceGnss simulate_gnss_learned(const std::vector<std::int64_t>& stamps_ns, c
       epoch.observations.push_back(p);
       out.pseudoranges.push_back(to_row(stamps_ns[i], p, !st.nlos));
     }
-    ++out.epochs;
-    const Fix fix = solve_fix(epoch, guess, receiver);
-    if (!fix.valid) continue;
-    guess = fix.p_ecef;
-    out.fixes.push_back(to_sample(fix, stamps_ns[i], p_W[i], frame));
-  }
-  return out;
+  };
+  return run_receiver_epochs(stamps_ns, p_W, frame, m, e, observe);
 }
 
 RaytraceGnss run_learned_gnss(const std::filesystem::path& dir, const std::vector<std::int64_t>& stamps_ns,

@@ -42,29 +42,17 @@ RaytraceGnss simulate_gnss_raytrace(const std::vector<std::int64_t>& stamps_ns,
   const LocalFrame frame(origin);
   const SignalTracer tracer(world);
   const std::vector<OrbitElements> almanac = nominal_constellation();
-  const ReceiverConfig receiver;
-  RaytraceGnss out;
-  Eigen::Vector3d guess = Eigen::Vector3d::Zero();  // the receiver starts from the Earth's centre, not the truth
-  for (std::size_t i = 0; i < stamps_ns.size(); ++i) {
-    const double dt = i == 0 ? 0 : time_s(stamps_ns[i]) - time_s(stamps_ns[i - 1]);
-    advance_epoch(i == 0, dt, m, e);
-    const double t_rx = m.sky_epoch_s + time_s(stamps_ns[i]);
-    const Eigen::Vector3d rx_ecef = frame.to_ecef(p_W[i]);
-    Epoch epoch{t_rx, {}};
-    for (const OrbitElements& orbit : almanac) {
-      Pseudorange p;
-      bool los = true;
-      if (!observe(orbit, rx_ecef, t_rx, frame, tracer, p_W[i], dt, m, e, &p, &los)) continue;
-      epoch.observations.push_back(p);
-      out.pseudoranges.push_back(to_row(stamps_ns[i], p, los));
-    }
-    ++out.epochs;
-    const Fix fix = solve_fix(epoch, guess, receiver);
-    if (!fix.valid) continue;
-    guess = fix.p_ecef;
-    out.fixes.push_back(to_sample(fix, stamps_ns[i], p_W[i], frame));
-  }
-  return out;
+  return run_receiver_epochs(stamps_ns, p_W, frame, m, e,
+                             [&](std::size_t i, double dt, double t_rx, const Eigen::Vector3d& rx_ecef, Epoch& epoch,
+                                 RaytraceGnss& out) {
+                               for (const OrbitElements& orbit : almanac) {
+                                 Pseudorange p;
+                                 bool los = true;
+                                 if (!observe(orbit, rx_ecef, t_rx, frame, tracer, p_W[i], dt, m, e, &p, &los)) continue;
+                                 epoch.observations.push_back(p);
+                                 out.pseudoranges.push_back(to_row(stamps_ns[i], p, los));
+                               }
+                             });
 }
 
 void write_pseudoranges(const std::filesystem::path& dir, const std::vector<PseudorangeRow>& rows) {

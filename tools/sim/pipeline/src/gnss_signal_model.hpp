@@ -8,6 +8,7 @@
 #include <map>
 #include <random>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -15,6 +16,7 @@
 #include "twinslam/gnss/observation.hpp"
 #include "twinslam/gnss/orbit.hpp"
 #include "twinslam/gnss/receiver.hpp"
+#include "twinslam/sim/clock.hpp"
 #include "twinslam/sim/gnss_raytrace.hpp"
 #include "twinslam/sim/world/signal_tracer.hpp"
 
@@ -76,5 +78,29 @@ gnss::Pseudorange make_pseudorange(const gnss::OrbitElements& orbit, const Satel
 GnssSample to_sample(const gnss::Fix& fix, std::int64_t stamp_ns, const Eigen::Vector3d& p_W, const LocalFrame& frame);
 
 PseudorangeRow to_row(std::int64_t stamp_ns, const gnss::Pseudorange& p, bool line_of_sight);
+
+// The epoch loop both models share: per stamp the error state advances, `observe(i, dt_s, t_rx, rx_ecef, epoch, out)`
+// adds the epoch's signals (and their pseudoranges.csv rows to `out`), and the receiver solves the fix from the
+// previous one, never from the truth (the Earth's centre at first). The call order keeps the random draws in order.
+template <typename Observe>
+RaytraceGnss run_receiver_epochs(const std::vector<std::int64_t>& stamps_ns, const std::vector<Eigen::Vector3d>& p_W,
+                                 const LocalFrame& frame, const RaytraceGnssModel& m, ErrorState& e, Observe&& observe) {
+  const gnss::ReceiverConfig receiver;
+  RaytraceGnss out;
+  Eigen::Vector3d guess = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < stamps_ns.size(); ++i) {
+    const double dt = i == 0 ? 0 : time_s(stamps_ns[i]) - time_s(stamps_ns[i - 1]);
+    advance_epoch(i == 0, dt, m, e);
+    const double t_rx = m.sky_epoch_s + time_s(stamps_ns[i]);
+    gnss::Epoch epoch{t_rx, {}};
+    observe(i, dt, t_rx, frame.to_ecef(p_W[i]), epoch, out);
+    ++out.epochs;
+    const gnss::Fix fix = gnss::solve_fix(epoch, guess, receiver);
+    if (!fix.valid) continue;
+    guess = fix.p_ecef;
+    out.fixes.push_back(to_sample(fix, stamps_ns[i], p_W[i], frame));
+  }
+  return out;
+}
 
 }  // namespace twinslam::sim::gnss_model
