@@ -1,5 +1,5 @@
-// PersistenceGate: a correction the Mahalanobis gate refuses from keyframes a landmark horizon apart is let in; a short
-// run, a run that disagrees, or a stale one is not.
+// PersistenceGate: a correction the Mahalanobis gate refuses from keyframes a landmark horizon apart is let in; too few
+// agreeing refusals, a short span, disagreeing ones or stale ones are not.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,24 +43,40 @@ TEST(RegistrationPersistenceGate, AgreeingRefusalsOverTheSpanAdmitTheLastWithIts
   EXPECT_TRUE(gate.review(d, at(110)));
   EXPECT_EQ(d.status, RegistrationStatus::kAccepted);
   EXPECT_EQ(d.information, d.details.information);
-  EXPECT_NE(d.reason.find("4 keyframes over 10.0 s"), std::string::npos) << d.reason;
+  EXPECT_NE(d.reason.find("4 of 4 refused keyframes over 10.0 s"), std::string::npos) << d.reason;
   EXPECT_EQ(gate.readmitted(), 1u);
   RegistrationResult e = refused(1.0);  // the run starts over after a re-admission
   EXPECT_FALSE(gate.review(e, at(120)));
 }
 
-TEST(RegistrationPersistenceGate, ARunIsTheNewestRefusalsThatAgreeWithTheLatest) {
-  PersistenceGate gate(config(3, 1.0));
+TEST(RegistrationPersistenceGate, OnlyRefusalsThatAgreeWithTheNewestVote) {
+  PersistenceGate gate(config(3, 2.0));
   RegistrationResult a = refused(1.0), b = refused(1.5), c = refused(1.5, 2.0), d = refused(1.5, 2.2),
                      e = refused(1.45, 2.1);
   EXPECT_FALSE(gate.review(a, at(1)));
-  EXPECT_FALSE(gate.review(b, at(2)));  // 0.5 m from a: a new run of one
-  EXPECT_FALSE(gate.review(c, at(3)));  // 2 deg from b: a new run
-  EXPECT_FALSE(gate.review(d, at(4)));
-  EXPECT_TRUE(gate.review(e, at(5)));  // c, d, e agree
+  EXPECT_FALSE(gate.review(b, at(2)));  // 0.5 m from a
+  EXPECT_FALSE(gate.review(c, at(3)));  // 2 deg from b and a
+  EXPECT_FALSE(gate.review(d, at(4)));  // c, d: two
+  EXPECT_TRUE(gate.review(e, at(5)));   // c, d, e agree
+  EXPECT_NE(e.reason.find("3 of 5 refused keyframes over 2.0 s"), std::string::npos) << e.reason;
 }
 
-TEST(RegistrationPersistenceGate, AcceptancesAndOtherRejectionsInBetweenNeitherCountNorBreakARun) {
+// Measured on city-loops after a wrong heading was declared: ICP from the wrong estimate finds the right correction
+// on some keyframes and a wrong one in between, for 100 s. The right one, said often enough over the span, gets in; the
+// interleaved wrong one, said less often, does not.
+TEST(RegistrationPersistenceGate, ACorrectionInterleavedWithAnotherIsLetInWhenItIsSaidOftenEnough) {
+  PersistenceGate gate(config(5, 10.0));
+  int admitted_right = 0, admitted_wrong = 0;
+  for (int k = 0; k < 14; ++k) {
+    const bool right = k % 3 != 1;  // right, wrong, right, right, wrong, right, ...
+    RegistrationResult r = right ? refused(3.0, 4.0) : refused(0.8, -1.0);
+    if (gate.review(r, at(2.0 * k))) (right ? admitted_right : admitted_wrong)++;
+  }
+  EXPECT_EQ(admitted_right, 1);
+  EXPECT_EQ(admitted_wrong, 0);
+}
+
+TEST(RegistrationPersistenceGate, AcceptancesAndOtherRejectionsInBetweenDoNotCount) {
   PersistenceGate gate(config(3, 2.0));
   RegistrationResult a = refused(1.0);
   EXPECT_FALSE(gate.review(a, at(1)));
@@ -75,6 +91,18 @@ TEST(RegistrationPersistenceGate, AcceptancesAndOtherRejectionsInBetweenNeitherC
   RegistrationResult b = refused(1.0), c = refused(1.0);
   EXPECT_FALSE(gate.review(b, at(3.5)));
   EXPECT_TRUE(gate.review(c, at(4)));  // a, b, c
+}
+
+TEST(RegistrationPersistenceGate, UnconvergedIcpVotesButIsNeverLetIn) {
+  PersistenceGate gate(config(3, 2.0));
+  RegistrationResult a = refused(1.0), b = refused(1.0), c = refused(1.0), d = refused(1.0);
+  b.status = c.status = RegistrationStatus::kNotConverged;
+  EXPECT_FALSE(gate.review(a, at(1)));
+  EXPECT_FALSE(gate.review(b, at(2)));
+  EXPECT_FALSE(gate.review(c, at(3)));  // three agree over 2 s, but this one did not converge
+  EXPECT_EQ(c.status, RegistrationStatus::kNotConverged);
+  EXPECT_TRUE(gate.review(d, at(3.5)));  // a, b, c, d
+  EXPECT_NE(d.reason.find("4 of 4 refused keyframes over 2.5 s"), std::string::npos) << d.reason;
 }
 
 TEST(RegistrationPersistenceGate, RefusalsOlderThanTwoSpansAreForgotten) {

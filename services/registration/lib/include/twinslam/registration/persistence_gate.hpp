@@ -20,16 +20,19 @@ class PersistenceGate {
   explicit PersistenceGate(const RegistrationConfig& config) : config_(config) {}
 
   // Call with each result of one vehicle in keyframe order (stamp_ns: its keyframe's). A kCorrectionTooLarge result
-  // is accepted (status kAccepted, information from its details, a reason saying so) when the refusals of the last
-  // 2 x persistent_span_s end in a run of at least persistent_corrections that all agree with it and span at least
-  // persistent_span_s. Two corrections agree when, as transforms of W (correction_W, the dT of eq. 3), they move
-  // the newest keyframe's position to within the larger of persistent_tolerance_m and persistent_tolerance_fraction of
-  // its own correction, and turn by persistent_tolerance_deg at most of each other. Compared in W, not about each
-  // keyframe: an estimate whose whole frame is off (a T_WL heading error of 4 deg, say) needs the same dT of W from
-  // every keyframe, while its correction about a keyframe 30 m from the turn's centre changes by 1.2 m as the vehicle
-  // flies 17 m. Why a span: consecutive LocalMaps share most landmarks, so only refusals a
-  // landmark horizon apart are nearly independent looks. Accepted results in between do not break a run. Returns
-  // true when it re-admitted `r`. Off when config.persistent_corrections is 0.
+  // is accepted (status kAccepted, information from its details, a reason saying so) when, among the refusals of the
+  // last 2 x persistent_span_s, at least persistent_corrections (itself included) agree with it and the oldest of
+  // those is persistent_span_s older than it. Refusals that disagree do not break the count: from a wrong estimate
+  // ICP lands in the right basin on some keyframes and in a wrong one on others. Two corrections agree when, as
+  // transforms of W (correction_W, the dT of eq. 3), they move the newest keyframe's position to within the larger
+  // of persistent_tolerance_m and persistent_tolerance_fraction of its own correction, and turn by
+  // persistent_tolerance_deg at most of each other. Compared in W, not about each keyframe: an estimate whose whole
+  // frame is off (a T_WL heading error of 4 deg, say) needs the same dT of W from every keyframe, while its
+  // correction about a keyframe 30 m from the turn's centre changes by 1.2 m as the vehicle flies 17 m. Why a span:
+  // consecutive LocalMaps share most landmarks, so only refusals a landmark horizon apart are nearly independent
+  // looks. kNotConverged results (ICP out of iterations, still pulled toward where the cloud fits) count as refusals
+  // that agree or not, but are never accepted themselves. Accepted results in between do not count against it. Returns true when it re-admitted `r`. Off when
+  // config.persistent_corrections is 0.
   bool review(RegistrationResult& r, std::int64_t stamp_ns);
 
   std::size_t readmitted() const { return readmitted_; }
@@ -42,7 +45,7 @@ class PersistenceGate {
     std::int64_t stamp_ns;
     Eigen::Isometry3d correction_W;  // dT of W (eq. 3) that registration found
   };
-  std::vector<Refusal> refused_;  // the current run of agreeing refusals (none older than 2 spans), oldest first
+  std::vector<Refusal> refused_;  // the gate's refusals of the last 2 spans, oldest first
   std::size_t readmitted_ = 0;
 };
 
