@@ -199,6 +199,75 @@ TEST(GlobalFusion, CorrelatedGnssErrorsDoNotDeclareAnOverconfidentHeading) {
 }
 
 
+// A heading 4 deg off, held by an overconfident prior (0.5 deg), and registrations that agree with it (identity
+// corrections: ICP settled near the wrong estimate) for the first 12 s. Then one registration of the true pose comes
+// with `readmitted` as registration's persistence gate sends it, and registrations of the true pose follow, accepted
+// only while they are small (0.5 deg, 0.5 m: the prior's sigmas), as registration's Mahalanobis test does. Returns the
+// heading error of T_WL 1 s after the re-admitted registration [deg] and the fusion counts.
+struct Reopened {
+  double yaw_error_deg = 0.0;
+  GlobalFusionCounts counts;
+  MapRegistrationCounts registrations;
+};
+Reopened fly_wrong_heading(const SimRun& run, bool realign) {
+  SlidingWindowEstimator est(window_config(run));
+  GlobalFusionConfig g;
+  g.fuse_registrations = true;
+  g.realign_on_readmitted_registration = realign;
+  g.initial_pose_yaw_sigma_deg = 0.5;
+  const auto& first = run.frames.front().truth;
+  const Eigen::Matrix3d R0 = first.q_LB.toRotationMatrix();
+  InitialPose start{first.p_L, std::atan2(R0(1, 0), R0(0, 0)) * 180.0 / M_PI + 4.0};
+  GlobalFusion fusion(est, g, start);
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  information.diagonal() << Eigen::Vector3d::Constant(std::pow(180.0 / M_PI / 0.2, 2)), Eigen::Vector3d::Constant(100.0);
+  est.initialize_next_frame(first);
+  std::size_t imu_next = 0;
+  std::optional<std::int64_t> readmitted_ns;
+  Reopened out;
+  for (const auto& f : run.frames) {
+    const double t = 1e-9 * static_cast<double>(f.stamp_ns - run.frames.front().stamp_ns);
+    feed_imu(run, est, imu_next, f.stamp_ns);
+    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
+    fusion.after_frame(e, est.local_map());
+    const auto& map = est.local_map();
+    if (map && est.world_aligned()) {
+      const Eigen::Isometry3d truth = geometry::make_pose(f.truth.q_LB, f.truth.p_L);
+      const bool wrong = t < 12.0;
+      const bool readmit = !wrong && !readmitted_ns;
+      const Eigen::Isometry3d correction =
+          wrong ? Eigen::Isometry3d::Identity() : Eigen::Isometry3d(truth * (map->T_WL * map->T_LB).inverse());
+      const double dyaw_deg = std::abs(std::atan2(correction.linear()(1, 0), correction.linear()(0, 0))) * 180.0 / M_PI;
+      const bool plausible = dyaw_deg < 0.5 && (correction * truth.translation() - truth.translation()).norm() < 0.5;
+      fusion.on_registration(map->keyframe_stamp_ns, wrong || readmit || plausible, correction, information, readmit);
+      if (readmit) readmitted_ns = f.stamp_ns;
+    }
+    if (readmitted_ns && f.stamp_ns >= *readmitted_ns + 1'000'000'000LL) {
+      const Eigen::Matrix3d R = est.world_alignment().linear();
+      out.yaw_error_deg = std::abs(std::atan2(R(1, 0), R(0, 0))) * 180.0 / M_PI;
+      break;
+    }
+  }
+  out.counts = fusion.counts();
+  out.registrations = fusion.registration_counts();
+  return out;
+}
+
+// A re-admitted registration re-opens the alignment: T_WL jumps to the heading the twin gives, the registrations that
+// agreed with the wrong estimate leave the window, and the heading is right at once (0.08 deg measured). Without it,
+// the same registration is one Huber-weighted term against those registrations and the prior: 0.42 deg off after 1 s.
+TEST(GlobalFusion, AReadmittedRegistrationReopensAWrongAlignment) {
+  const SimRun run = flight();
+  const Reopened reopened = fly_wrong_heading(run, true);
+  EXPECT_EQ(reopened.counts.registration_realignments, 1u);
+  EXPECT_GT(reopened.registrations.dropped, 5u);
+  EXPECT_LT(reopened.yaw_error_deg, 0.2);
+  const Reopened held = fly_wrong_heading(run, false);
+  EXPECT_EQ(held.counts.registration_realignments, 0u);
+  EXPECT_EQ(held.registrations.dropped, 0u);
+  EXPECT_GT(held.yaw_error_deg, 0.3);
+}
+
 // Flies the figure-eight with a fix (truth + 1 m white noise) every 4th frame through GlobalFusion configured by `g`.
 // Returns the RMS position error in W over the last 10 s of frames where `T_WL` (read after each frame) has a value,
 // and how many fixes were sent. Truth: L = W.

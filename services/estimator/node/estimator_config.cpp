@@ -23,6 +23,7 @@ void bind_fusion_fields(yaml::Fields& fields, GlobalFusionConfig& f) {
       .flag("fuse_gnss", f.fuse_gnss)
       .flag("fuse_gnss_loose", f.fuse_gnss_loose)
       .number("realign_after_s", f.realign_after_s, "s")
+      .flag("realign_on_readmitted_registration", f.realign_on_readmitted_registration)
       .number("initial_pose_position_sigma_m", f.initial_pose_position_sigma_m, "m")
       .number("initial_pose_yaw_sigma_deg", f.initial_pose_yaw_sigma_deg, "deg")
       .number("gnss_alignment_sigma_scale", f.gnss_alignment_sigma_scale)

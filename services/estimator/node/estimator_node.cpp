@@ -74,6 +74,8 @@ void EstimatorNode::report_fusion() {
       {"provisional_alignments", f.provisional_alignments},
       {"registrations_fused", r.attached + r.reattached},
       {"registrations_reattached", r.reattached},
+      {"registration_realignments", f.registration_realignments},
+      {"registrations_dropped_by_realignment", r.dropped},
       {"registrations_unmatched", r.unmatched},
       {"registrations_before_alignment", f.registrations_before_alignment},
       {"registrations_unknown_keyframe", f.registrations_unknown_keyframe},
@@ -92,7 +94,8 @@ void EstimatorNode::apply(const GlobalInput& input) {
     std::array<double, 36> info{};
     std::copy(r->information().begin(), r->information().end(), info.begin());
     fusion_.on_registration(r->keyframe_stamp_ns(), r->status() == msg::REG_ACCEPTED, dds::from_msg(r->correction_W()),
-                            geometry::from_row_major(info));  // (rotation, translation) as on the wire
+                            geometry::from_row_major(info),  // (rotation, translation) as on the wire
+                            r->readmitted());
     return;
   }
   const auto& g = std::get<msg::GnssFix>(input);

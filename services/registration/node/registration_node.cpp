@@ -146,7 +146,10 @@ void RegistrationNode::serve(const Pending& p) {
       }
       RegistrationResult r = register_cloud(options_.registration, twin_.index(), source, covariance);
       PersistenceGate& gate = persistence_.try_emplace(m.vehicle_id(), options_.registration).first->second;
-      if (gate.review(r, static_cast<std::int64_t>(m.keyframe_stamp_ns()))) counters_.add("readmitted_persistent");
+      if (gate.review(r, static_cast<std::int64_t>(m.keyframe_stamp_ns()))) {
+        counters_.add("readmitted_persistent");
+        out.readmitted(true);
+      }
       out.status(to_msg(r.status));
       out.reason(r.reason);
       out.correction_W(dds::to_msg(r.correction_W));

@@ -10,6 +10,8 @@ namespace twinslam::estimator {
 namespace {
 
 constexpr double kDegToRad = 0.017453292519943295;
+// Floors of the re-opened alignment's prior: what one registration resolves (bench_registration_floor: 0.2-0.5 m).
+constexpr double kReopenMinSigma_m = 0.5, kReopenMinSigma_deg = 0.5;
 constexpr std::size_t kPublishedKept = 400;  // LocalMaps remembered for late registrations (~2 min of keyframes)
 
 // The sigmas of the T_WL prior a GNSS fit sets: the fit's own (largest position sigma, heading) times the scale.
@@ -180,7 +182,7 @@ bool GlobalFusion::realignment_helps(const WorldAlignmentSigmas& fit) const {
 }
 
 void GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted, const Eigen::Isometry3d& correction_W,
-                                   const Eigen::Matrix<double, 6, 6>& information) {
+                                   const Eigen::Matrix<double, 6, 6>& information, bool readmitted) {
   ++counts_.registrations_in;
   if (!accepted || !config_.fuse_registrations) return;
   if (!aligned_) {
@@ -194,9 +196,26 @@ void GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted
     return;
   }
   const auto& [T_LB, T_WL] = it->second;
+  if (readmitted && config_.realign_on_readmitted_registration) reopen_alignment(correction_W, T_WL, T_LB);
   provider_->add(map_registration_from_correction(keyframe_stamp_ns, T_WL * T_LB, correction_W, information), T_LB);
   ++counts_.registrations_accepted;
   last_accepted_ns_ = keyframe_stamp_ns;
+}
+
+void GlobalFusion::reopen_alignment(const Eigen::Isometry3d& correction_W, const Eigen::Isometry3d& T_WL,
+                                    const Eigen::Isometry3d& T_LB) {
+  // The correction moves W's points as the estimate saw them onto the twin, so the alignment that puts this keyframe
+  // where the twin says is dT T_WL (its heading kept, roll and pitch dropped: L and W are gravity-aligned). How far
+  // that is from the estimate is how wrong the estimator was while sure of itself: the new prior's sigmas.
+  const Eigen::Isometry3d T_WL_new = correction_W * T_WL;
+  const Eigen::Vector3d p_WB = (T_WL * T_LB).translation();
+  const Eigen::Matrix3d dR = correction_W.linear();
+  WorldAlignmentSigmas sigmas;
+  sigmas.position_m = std::max(kReopenMinSigma_m, (correction_W * p_WB - p_WB).norm());
+  sigmas.yaw_rad = std::max(kReopenMinSigma_deg * kDegToRad, std::abs(std::atan2(dR(1, 0), dR(0, 0))));
+  estimator_.set_world_alignment(T_WL_new, sigmas);
+  provider_->drop_all();
+  ++counts_.registration_realignments;
 }
 
 void GlobalFusion::after_frame(const FrameEstimate& estimate, const std::optional<LocalMapEstimate>& local_map) {

@@ -102,6 +102,11 @@ void MapRegistrationProvider::add_terms(const WindowBlocks& blocks, std::vector<
   }
 }
 
+void MapRegistrationProvider::drop_all() {
+  counts_.dropped += pending_.size();
+  pending_.clear();
+}
+
 void MapRegistrationProvider::keyframe_marginalized(std::int64_t stamp_ns) {
   for (auto it = pending_.begin(); it != pending_.end();) {
     if (it->second.attached_to == stamp_ns) {

@@ -19,7 +19,8 @@ struct MapRegistrationProviderConfig {
 };
 
 struct MapRegistrationCounts {
-  unsigned long long received = 0, attached = 0, reattached = 0, unmatched = 0, marginalized = 0;
+  unsigned long long received = 0, attached = 0, reattached = 0, unmatched = 0, marginalized = 0,
+                     dropped = 0;  // taken out of the window by drop_all (a re-alignment found them wrong)
 };
 
 class MapRegistrationProvider final : public WindowFactorProvider {
@@ -29,6 +30,10 @@ class MapRegistrationProvider final : public WindowFactorProvider {
   // An accepted registration. T_LB_estimate / T_WL_estimate: the keyframe pose and alignment of the LocalMap it
   // answers (what the estimator published), so the correction is read against the estimate it was computed from.
   void add(const MapRegistration& registration, const Eigen::Isometry3d& T_LB_estimate);
+
+  // Takes every registration not yet marginalized out of the window (counted as `dropped`): they were read against an
+  // alignment that a re-admitted registration found wrong.
+  void drop_all();
 
   void add_terms(const WindowBlocks& blocks, std::vector<ResidualTerm>& terms) override;
   void keyframe_marginalized(std::int64_t stamp_ns) override;
