@@ -15,8 +15,9 @@
 namespace twinslam::sim {
 namespace {
 
-constexpr int kFormat = 1;
-const std::vector<std::string> kDimensions{"height_m", "elevation_deg", "error_m", "cn0_offset_db"};
+constexpr int kFormat = 2;  // 2: received_share per height and elevation (1: per elevation)
+// The error column is sign(e) ln(1 + |e| / 1 m) of the range error e (error_to_log), not metres.
+const std::vector<std::string> kDimensions{"height_m", "elevation_deg", "error_log1p", "cn0_offset_db"};
 
 template <typename Range>
 void flow_seq(YAML::Emitter& y, const Range& values) {
@@ -112,9 +113,10 @@ void write_learned_model(const std::filesystem::path& file, const LearnedGnssMod
 
   y << YAML::Key << "received_share" << YAML::Value << YAML::BeginMap;
   y << YAML::Key << "bin_deg" << YAML::Value << kElevationBinDeg;
-  y << YAML::Key << "share" << YAML::Value;
-  flow_seq(y, m.received_share);
-  y << YAML::EndMap;
+  y << YAML::Key << "height_bin_m" << YAML::Value << kShareHeightBinM;
+  y << YAML::Key << "share" << YAML::Value << YAML::BeginSeq;
+  for (const std::vector<double>& row : m.received_share) flow_seq(y, row);
+  y << YAML::EndSeq << YAML::EndMap;
 
   y << YAML::Key << "errors_gmm" << YAML::Value << YAML::BeginMap;
   y << YAML::Key << "dimensions" << YAML::Value << YAML::Flow << kDimensions;
@@ -140,7 +142,7 @@ void write_learned_model(const std::filesystem::path& file, const LearnedGnssMod
   y << YAML::Key << "generation" << YAML::Value << YAML::BeginMap;
   y << YAML::Key << "count_tau_s" << YAML::Value << m.generation.count_tau_s;
   y << YAML::Key << "error_tau_s" << YAML::Value << m.generation.error_tau_s;
-  y << YAML::Key << "selection" << YAML::Value << "weighted-random";
+  y << YAML::Key << "selection" << YAML::Value << "pareto-order";
   y << YAML::EndMap;
   y << YAML::EndMap;
 
@@ -210,7 +212,14 @@ LearnedGnssModel read_learned_model(const std::filesystem::path& file) {
     if (r.number(r.at(rs, "bin_deg", "received_share."), "received_share.bin_deg") != kElevationBinDeg) {
       r.fail("received_share.bin_deg", "expected " + std::to_string(static_cast<int>(kElevationBinDeg)));
     }
-    m.received_share = r.numbers(r.at(rs, "share", "received_share."), "received_share.share");
+    if (r.number(r.at(rs, "height_bin_m", "received_share."), "received_share.height_bin_m") != kShareHeightBinM) {
+      r.fail("received_share.height_bin_m", "expected " + std::to_string(static_cast<int>(kShareHeightBinM)));
+    }
+    const YAML::Node rows = r.at(rs, "share", "received_share.");
+    if (!rows.IsSequence() || rows.size() == 0) r.fail("received_share.share", "expected a list of rows per height");
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      m.received_share.push_back(r.numbers(rows[i], "received_share.share", i == 0 ? 0 : m.received_share[0].size()));
+    }
 
     const YAML::Node t = r.at(root, "training", "");
     m.training_positions = static_cast<std::size_t>(r.number(r.at(t, "positions", "training."), "training.positions"));
@@ -242,7 +251,7 @@ LearnedGnssModel read_learned_model(const std::filesystem::path& file) {
 
 void write_gnss_vs_height_png(const std::filesystem::path& png, const GnssTrainingData& training,
                               const LearnedGnssModel& model, const std::vector<GnssSample>& fixes, double ground_z_m) {
-  const plot::Rgb grey{150, 150, 150}, blue{31, 119, 180}, orange{230, 120, 20}, red{200, 30, 30};
+  const plot::Rgb grey{150, 150, 150}, blue{31, 119, 180}, orange{230, 120, 20};
   double top = 1;
   for (const double h : training.heights_m) top = std::max(top, h);
   std::vector<double> grid;
@@ -284,8 +293,7 @@ void write_gnss_vs_height_png(const std::filesystem::path& png, const GnssTraini
       samples.x.push_back(training.signals[i].height_m);
       samples.y.push_back(std::clamp(training.signals[i].error_m, -60.0, 60.0));
     }
-    plot::Line med{"GMM median", {}, {}, blue, 2}, p5{"GMM 5 / 95 %", {}, {}, orange, 1}, p95{"", {}, {}, orange, 1},
-        mean{"GMM mean", {}, {}, red, 1};
+    plot::Line med{"GMM median", {}, {}, blue, 2}, p5{"GMM 5 / 95 %", {}, {}, orange, 1}, p95{"", {}, {}, orange, 1};
     for (const double h : grid) {
       const learn::GaussianMixture c = model.errors.conditional(Eigen::VectorXd::Constant(1, h));
       std::vector<double> w, mu, sd;
@@ -297,13 +305,12 @@ void write_gnss_vs_height_png(const std::filesystem::path& png, const GnssTraini
       med.x.push_back(h);
       p5.x.push_back(h);
       p95.x.push_back(h);
-      mean.x.push_back(h);
-      med.y.push_back(mixture_quantile(w, mu, sd, 0.5));
-      p5.y.push_back(mixture_quantile(w, mu, sd, 0.05));
-      p95.y.push_back(std::min(60.0, mixture_quantile(w, mu, sd, 0.95)));
-      mean.y.push_back(c.mean()[1]);
+      // Quantiles of the modelled sign(e) ln(1 + |e|) map to those of e (monotone); its mean would not.
+      med.y.push_back(error_from_log(mixture_quantile(w, mu, sd, 0.5)));
+      p5.y.push_back(std::max(-60.0, error_from_log(mixture_quantile(w, mu, sd, 0.05))));
+      p95.y.push_back(std::min(60.0, error_from_log(mixture_quantile(w, mu, sd, 0.95))));
     }
-    b.lines = {samples, med, p5, p95, mean};
+    b.lines = {samples, med, p5, p95};
   }
 
   // 3. The fix's horizontal error: ray-traced at the training positions, learned along the flight.
