@@ -23,7 +23,7 @@ inline constexpr TopicSpec kGnss{"twinslam/v1/gnss", "twinslam::msg::GnssFix", Q
 inline constexpr TopicSpec kFeatures{"twinslam/v1/features", "twinslam::msg::FeatureFrame", QosFamily::Result};
 inline constexpr TopicSpec kOdometry{"twinslam/v1/odometry", "twinslam::msg::Odometry", QosFamily::Result};
 inline constexpr TopicSpec kLocalMap{"twinslam/v2/local_map", "twinslam::msg::LocalMap", QosFamily::Result};
-inline constexpr TopicSpec kRegistration{"twinslam/v2/registration", "twinslam::msg::Registration", QosFamily::Result};
+inline constexpr TopicSpec kRegistration{"twinslam/v3/registration", "twinslam::msg::Registration", QosFamily::Result};
 inline constexpr TopicSpec kTileRequest{"twinslam/v1/tile_request", "twinslam::msg::TileRequest", QosFamily::Control};
 inline constexpr TopicSpec kMapTile{"twinslam/v1/map_tile", "twinslam::msg::MapTile", QosFamily::Tile};
 inline constexpr TopicSpec kHeartbeat{"twinslam/v1/heartbeat", "twinslam::msg::Heartbeat", QosFamily::Heartbeat};
