@@ -1,16 +1,16 @@
 // The registration service over DDS in one process (private domain): a RegistrationNode fed MapTiles of a synthetic
 // city (Draco points, as the tiles service sends them) and a LocalMap whose landmarks were seen through a wrong T_WL
 // answers with an accepted Registration whose correction undoes the error; a cloud far from every tile is rejected
-// with REG_REJECTED_NO_MAP and a reason. Also WindowedTwin: only tiles inside a vehicle's window are indexed, and
+// with REG_REJECTED_NO_MAP and a reason; a correction the Mahalanobis gate refused over a landmark horizon goes out
+// accepted with `readmitted` set. Also WindowedTwin: only tiles inside a vehicle's window are indexed, and
 // the index then answers like one built from scratch on those tiles.
 #include <gtest/gtest.h>
-
-#include <unistd.h>
 
 #include <atomic>
 #include <mutex>
 
 #include "registration_node.hpp"
+#include "subprocess.hpp"
 #include "synthetic_twin.hpp"
 #include "twinslam/dds/convert.hpp"
 #include "twinslam/twin/store.hpp"
@@ -113,52 +113,11 @@ TEST(WindowedTwin, PrefetchesTheRingAroundTheWindowAFewTilesPerUpdateNearestFirs
   }
 }
 
-class RegistrationNodeTest : public ::testing::Test {
- protected:
-  static dds::NodeConfig config(const std::string& service) {
-    dds::NodeConfig c;
-    c.service = service;
-    c.domain = 140 + static_cast<int>(::getpid() % 40);
-    return c;
-  }
-};
-
-TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlignmentError) {
-  dds::Node service(config("registration"));
-  dds::Counters counters;
-  RegistrationNodeOptions options;
-  RegistrationNode node(service, counters, options);
-
-  dds::Node peer(config("test"));
-  auto tiles_out = peer.writer<msg::MapTile>(dds::topics::kMapTile);
-  auto maps_out = peer.writer<msg::LocalMap>(dds::topics::kLocalMap);
-  std::mutex m;
-  std::vector<msg::Registration> got;
-  peer.subscribe<msg::Registration>(dds::topics::kRegistration, [&](const msg::Registration& r) {
-    std::lock_guard lock(m);
-    got.push_back(r);
-  });
-  ASSERT_TRUE(testing::wait_for([&] { return tiles_out.matched_readers() > 0 && maps_out.matched_readers() > 0; }, 5s));
-  for (const auto& [key, t] : test::split_tiles(test::sample_grid(test::city_surfaces(), 0.5))) {
-    msg::MapTile tile;
-    tile.tile_key("synthetic/" + key.str());
-    tile.twin_id("synthetic");
-    const Eigen::AlignedBox3d b = bounds(t);
-    for (int k = 0; k < 3; ++k) tile.bounds_W()[k] = b.min()[k], tile.bounds_W()[3 + k] = b.max()[k];
-    tile.points(static_cast<unsigned>(t.p_W.size()));
-    const auto bytes = encode(t);
-    tile.points_draco(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
-    tiles_out.publish(tile);
-  }
-  ASSERT_TRUE(testing::wait_for([&] { return counters.get("tiles_in") >= 9; }, 10s));
-
-  // 1 m / 3 deg off, about the keyframe body.
-  const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0, -45, 8);
-  const Eigen::Isometry3d error = test::offset_about(body, Eigen::Vector3d(0.2, 0.1, 1), 3.0, {0.6, -0.7, 0.4});
-  const SourceInput src = test::make_source(test::sample_noisy(test::city_surfaces(), 600, 0.1, 3), error, body);
+// The LocalMap the estimator would send for this source cloud (quality 1, no covariance).
+msg::LocalMap local_map(const std::string& vehicle, std::int64_t stamp_ns, const SourceInput& src) {
   msg::LocalMap lm;
-  lm.vehicle_id("uav7");
-  lm.keyframe_stamp_ns(123);
+  lm.vehicle_id(vehicle);
+  lm.keyframe_stamp_ns(stamp_ns);
   lm.T_LB(dds::to_msg(src.T_LB));
   lm.T_WL(dds::to_msg(src.T_WL));
   for (const auto& l : src.landmarks) {
@@ -167,6 +126,72 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
     x.quality(1.0f);
     lm.landmarks().push_back(x);
   }
+  return lm;
+}
+
+// Sets the keyframe covariance the estimator sends: sigma_deg on rotation, sigma_m on translation (rotation first).
+void set_covariance(msg::LocalMap& lm, double sigma_deg, double sigma_m, double off_diagonal = 0.0) {
+  lm.T_WB_covariance().clear();
+  for (int r = 0; r < 6; ++r)
+    for (int k = 0; k < 6; ++k) {
+      const double s = r < 3 ? sigma_deg * M_PI / 180.0 : sigma_m;
+      lm.T_WB_covariance().push_back(r == k ? s * s : off_diagonal);
+    }
+}
+
+class RegistrationNodeTest : public ::testing::Test {
+ protected:
+  static dds::NodeConfig config(const std::string& service) {
+    dds::NodeConfig c;
+    c.service = service;
+    c.domain = twinslam::test::test_domain();  // claimed with a lock: parallel tests never share it
+    return c;
+  }
+
+  // A registration service and a peer that sends it the synthetic city's tiles and collects its answers.
+  // The answers outlive the peer whose callback fills them (members are destroyed in reverse order).
+  std::mutex m;
+  std::vector<msg::Registration> got;
+  dds::Node service{config("registration")};
+  dds::Counters counters;
+  RegistrationNode node{service, counters, RegistrationNodeOptions{}};
+  dds::Node peer{config("test")};
+  dds::Writer<msg::MapTile> tiles_out = peer.writer<msg::MapTile>(dds::topics::kMapTile);
+  dds::Writer<msg::LocalMap> maps_out = peer.writer<msg::LocalMap>(dds::topics::kLocalMap);
+
+  void SetUp() override {
+    peer.subscribe<msg::Registration>(dds::topics::kRegistration, [&](const msg::Registration& r) {
+      std::lock_guard lock(m);
+      got.push_back(r);
+    });
+    ASSERT_TRUE(testing::wait_for([&] { return tiles_out.matched_readers() > 0 && maps_out.matched_readers() > 0; }, 5s));
+    for (const auto& [key, t] : test::split_tiles(test::sample_grid(test::city_surfaces(), 0.5))) {
+      msg::MapTile tile;
+      tile.tile_key("synthetic/" + key.str());
+      tile.twin_id("synthetic");
+      const Eigen::AlignedBox3d b = bounds(t);
+      for (int k = 0; k < 3; ++k) tile.bounds_W()[k] = b.min()[k], tile.bounds_W()[3 + k] = b.max()[k];
+      tile.points(static_cast<unsigned>(t.p_W.size()));
+      const auto bytes = encode(t);
+      tile.points_draco(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+      tiles_out.publish(tile);
+    }
+    ASSERT_TRUE(testing::wait_for([&] { return counters.get("tiles_in") >= 9; }, 10s));
+  }
+
+  std::size_t answers() {
+    std::lock_guard lock(m);
+    return got.size();
+  }
+};
+
+TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlignmentError) {
+
+  // 1 m / 3 deg off, about the keyframe body.
+  const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0, -45, 8);
+  const Eigen::Isometry3d error = test::offset_about(body, Eigen::Vector3d(0.2, 0.1, 1), 3.0, {0.6, -0.7, 0.4});
+  const SourceInput src = test::make_source(test::sample_noisy(test::city_surfaces(), 600, 0.1, 3), error, body);
+  const msg::LocalMap lm = local_map("uav7", 123, src);
   maps_out.publish(lm);
   // And one far from every tile.
   msg::LocalMap far = lm;
@@ -181,11 +206,7 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
   const auto with_covariance = [&](const char* vehicle, double sigma_deg, double sigma_m, double off_diagonal) {
     msg::LocalMap c = lm;
     c.vehicle_id(vehicle);
-    for (int r = 0; r < 6; ++r)
-      for (int k = 0; k < 6; ++k) {
-        const double s = r < 3 ? sigma_deg * M_PI / 180.0 : sigma_m;
-        c.T_WB_covariance().push_back(r == k ? s * s : off_diagonal);
-      }
+    set_covariance(c, sigma_deg, sigma_m, off_diagonal);
     maps_out.publish(c);
   };
   with_covariance("uav9", 0.2, 0.05, 0.0);
@@ -215,6 +236,32 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
   EXPECT_EQ(no.status(), msg::REG_REJECTED_NO_MAP);
   EXPECT_FALSE(no.reason().empty());
   EXPECT_EQ(counters.get("registrations_out"), 5u);
+}
+
+// An estimator sure of a wrong pose (0.2 deg / 5 cm against a 1 m / 3 deg error) sends keyframes 2.5 s apart: the
+// Mahalanobis gate refuses the correction until keyframes 10 s apart have found it five times; then the service
+// accepts it with Registration.readmitted set (the estimator re-opens its alignment on it), and only that one.
+TEST_F(RegistrationNodeTest, ACorrectionRefusedForALandmarkHorizonIsSentAsReadmitted) {
+  const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0, -45, 8);
+  const Eigen::Isometry3d error = test::offset_about(body, Eigen::Vector3d(0.2, 0.1, 1), 3.0, {0.6, -0.7, 0.4});
+  const SourceInput src = test::make_source(test::sample_noisy(test::city_surfaces(), 600, 0.1, 3), error, body);
+  constexpr std::int64_t kStep_ns = 2'500'000'000;
+  for (std::int64_t k = 0; k < 5; ++k) {
+    msg::LocalMap lm = local_map("uav3", k * kStep_ns, src);
+    set_covariance(lm, 0.2, 0.05);
+    maps_out.publish(lm);
+    // One at a time: the service keeps only the newest LocalMap of a vehicle while it is busy.
+    ASSERT_TRUE(testing::wait_for([&] { return answers() == static_cast<std::size_t>(k + 1); }, 30s)) << k;
+  }
+  std::lock_guard lock(m);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(got[k].status(), msg::REG_REJECTED_CORRECTION) << k << ": " << got[k].reason();
+    EXPECT_FALSE(got[k].readmitted()) << k;
+  }
+  EXPECT_EQ(got[4].status(), msg::REG_ACCEPTED) << got[4].reason();
+  EXPECT_TRUE(got[4].readmitted());
+  EXPECT_NE(got[4].reason().find("5 of 5 refused keyframes over 10.0 s"), std::string::npos) << got[4].reason();
+  EXPECT_EQ(counters.get("readmitted_persistent"), 1u);
 }
 
 TEST(RegistrationNodeParts, TileKeysAndStatusesMap) {
