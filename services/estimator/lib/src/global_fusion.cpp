@@ -28,7 +28,9 @@ void GlobalFusionConfig::validate() const {
   const std::pair<const char*, double> positive[] = {
       {"initial_pose_position_sigma_m", initial_pose_position_sigma_m},
       {"initial_pose_yaw_sigma_deg", initial_pose_yaw_sigma_deg},
-      {"gnss_alignment_sigma_scale", gnss_alignment_sigma_scale}};
+      {"gnss_alignment_sigma_scale", gnss_alignment_sigma_scale},
+      {"realign_min_correction_m", realign_min_correction_m},
+      {"realign_min_correction_deg", realign_min_correction_deg}};
   if (!(provisional_yaw_sigma_deg >= 0.0) || !std::isfinite(provisional_yaw_sigma_deg)) {
     throw InputError("global fusion: provisional_yaw_sigma_deg must be >= 0");
   }
@@ -196,10 +198,19 @@ void GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted
     return;
   }
   const auto& [T_LB, T_WL] = it->second;
-  if (readmitted && config_.realign_on_readmitted_registration) reopen_alignment(correction_W, T_WL, T_LB);
+  if (readmitted && config_.realign_on_readmitted_registration && reopening_warranted(correction_W, T_WL * T_LB)) {
+    reopen_alignment(correction_W, T_WL, T_LB);
+  }
   provider_->add(map_registration_from_correction(keyframe_stamp_ns, T_WL * T_LB, correction_W, information), T_LB);
   ++counts_.registrations_accepted;
   last_accepted_ns_ = keyframe_stamp_ns;
+}
+
+bool GlobalFusion::reopening_warranted(const Eigen::Isometry3d& correction_W, const Eigen::Isometry3d& T_WB) const {
+  const Eigen::Vector3d p_WB = T_WB.translation();
+  const Eigen::Matrix3d dR = correction_W.linear();
+  return (correction_W * p_WB - p_WB).norm() > config_.realign_min_correction_m ||
+         std::abs(std::atan2(dR(1, 0), dR(0, 0))) > config_.realign_min_correction_deg * kDegToRad;
 }
 
 void GlobalFusion::reopen_alignment(const Eigen::Isometry3d& correction_W, const Eigen::Isometry3d& T_WL,
