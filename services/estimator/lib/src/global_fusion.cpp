@@ -14,6 +14,15 @@ constexpr double kDegToRad = 0.017453292519943295;
 constexpr double kReopenMinSigma_m = 0.5, kReopenMinSigma_deg = 0.5;
 constexpr std::size_t kPublishedKept = 400;  // LocalMaps remembered for late registrations (~2 min of keyframes)
 
+// How far a correction (a transform of W) moves the keyframe body at p_WB [m] and turns its heading [rad].
+struct CorrectionSize {
+  double position_m, yaw_rad;
+};
+CorrectionSize correction_size(const Eigen::Isometry3d& correction_W, const Eigen::Vector3d& p_WB) {
+  const Eigen::Matrix3d dR = correction_W.linear();
+  return {(correction_W * p_WB - p_WB).norm(), std::abs(std::atan2(dR(1, 0), dR(0, 0)))};
+}
+
 // The sigmas of the T_WL prior a GNSS fit sets: the fit's own (largest position sigma, heading) times the scale.
 WorldAlignmentSigmas prior_sigmas(const GlobalFusionConfig& config, const WorldAlignment4Dof& fit) {
   WorldAlignmentSigmas sigmas;
@@ -207,10 +216,9 @@ void GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted
 }
 
 bool GlobalFusion::reopening_warranted(const Eigen::Isometry3d& correction_W, const Eigen::Isometry3d& T_WB) const {
-  const Eigen::Vector3d p_WB = T_WB.translation();
-  const Eigen::Matrix3d dR = correction_W.linear();
-  return (correction_W * p_WB - p_WB).norm() > config_.realign_min_correction_m ||
-         std::abs(std::atan2(dR(1, 0), dR(0, 0))) > config_.realign_min_correction_deg * kDegToRad;
+  const CorrectionSize size = correction_size(correction_W, T_WB.translation());
+  return size.position_m > config_.realign_min_correction_m ||
+         size.yaw_rad > config_.realign_min_correction_deg * kDegToRad;
 }
 
 void GlobalFusion::reopen_alignment(const Eigen::Isometry3d& correction_W, const Eigen::Isometry3d& T_WL,
@@ -219,11 +227,10 @@ void GlobalFusion::reopen_alignment(const Eigen::Isometry3d& correction_W, const
   // where the twin says is dT T_WL (its heading kept, roll and pitch dropped: L and W are gravity-aligned). How far
   // that is from the estimate is how wrong the estimator was while sure of itself: the new prior's sigmas.
   const Eigen::Isometry3d T_WL_new = correction_W * T_WL;
-  const Eigen::Vector3d p_WB = (T_WL * T_LB).translation();
-  const Eigen::Matrix3d dR = correction_W.linear();
+  const CorrectionSize size = correction_size(correction_W, (T_WL * T_LB).translation());
   WorldAlignmentSigmas sigmas;
-  sigmas.position_m = std::max(kReopenMinSigma_m, (correction_W * p_WB - p_WB).norm());
-  sigmas.yaw_rad = std::max(kReopenMinSigma_deg * kDegToRad, std::abs(std::atan2(dR(1, 0), dR(0, 0))));
+  sigmas.position_m = std::max(kReopenMinSigma_m, size.position_m);
+  sigmas.yaw_rad = std::max(kReopenMinSigma_deg * kDegToRad, size.yaw_rad);
   estimator_.set_world_alignment(T_WL_new, sigmas);
   provider_->drop_all();
   ++counts_.registration_realignments;
