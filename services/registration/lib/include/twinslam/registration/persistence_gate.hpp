@@ -31,8 +31,8 @@ class PersistenceGate {
   // correction about a keyframe 30 m from the turn's centre changes by 1.2 m as the vehicle flies 17 m. Why a span:
   // consecutive LocalMaps share most landmarks, so only refusals a landmark horizon apart are nearly independent
   // looks. kNotConverged results (ICP out of iterations, still pulled toward where the cloud fits) count as refusals
-  // that agree or not, but are never accepted themselves. Accepted results in between do not count against it. Returns true when it re-admitted `r`. Off when
-  // config.persistent_corrections is 0.
+  // that agree or not, but are never accepted themselves. Accepted results in between do not count against it.
+  // Returns true when it re-admitted `r`. Off when config.persistent_corrections is 0.
   bool review(RegistrationResult& r, std::int64_t stamp_ns);
 
   std::size_t readmitted() const { return readmitted_; }
