@@ -7,6 +7,7 @@
 #include <numbers>
 #include <numeric>
 #include <random>
+#include <string>
 
 #include "gnss_signal_model.hpp"
 #include "twinslam/core/error.hpp"
@@ -42,123 +43,64 @@ double tallest_top_m(const SceneHints& hints) {
   return top;
 }
 
-std::size_t elevation_bin(double elevation_deg, double mask_deg, std::size_t bins) {
-  const double b = std::max(0.0, (elevation_deg - mask_deg) / kElevationBinDeg);
-  return std::min(bins - 1, static_cast<std::size_t>(b));
-}
+}  // namespace
 
-std::size_t height_bin(double height_m, std::size_t bins) {
-  return std::min(bins - 1, static_cast<std::size_t>(std::max(0.0, height_m / kShareHeightBinM)));
+namespace {
+
+// config.positions positions outside the footprints (with the margin): a horizontal position from `draw`, then a
+// height from the ground to the tallest roof plus the margin, kept when `allowed` says so; `what` names the area in
+// the error when it is (almost) all buildings.
+template <typename Draw, typename Allowed>
+std::vector<Eigen::Vector3d> sample_positions(const SceneHints& hints, const GnssTrainingConfig& config,
+                                              std::uint64_t seed, Draw draw, Allowed allowed, const char* what) {
+  std::seed_seq seq = stream(seed, kStreamPositions);
+  std::mt19937_64 rng(seq);
+  std::uniform_real_distribution<double> uh(config.min_height_m, tallest_top_m(hints) + config.height_margin_m);
+  std::vector<Eigen::Vector3d> out;
+  for (std::size_t tries = 0; out.size() < config.positions; ++tries) {
+    if (tries > 100 * config.positions + 1000) {
+      throw InputError(std::string("gnss.model learned: ") + what + " is (almost) all buildings");
+    }
+    const Eigen::Vector2d en = draw(rng);
+    const double h = uh(rng);
+    if (!allowed(en) || inside_footprint(hints, en.x(), en.y(), config.footprint_margin_m)) continue;
+    out.emplace_back(en.x(), en.y(), hints.ground_z_m + h);
+  }
+  return out;
 }
 
 }  // namespace
-
-double error_to_log(double error_m) { return std::copysign(std::log1p(std::abs(error_m)), error_m); }
-double error_from_log(double log_error) { return std::copysign(std::expm1(std::abs(log_error)), log_error); }
-
-std::vector<double> inclusion_probabilities(const std::vector<double>& shares, std::size_t n) {
-  std::vector<double> pi(shares.size(), 0.0);
-  std::vector<bool> sure(shares.size(), false);
-  // Scale the shares to sum to n; any that would pass 1 is taken for sure and the rest rescaled (at most one round
-  // per satellite).
-  for (std::size_t round = 0; round <= shares.size(); ++round) {
-    double free_sum = 0, taken = 0;
-    for (std::size_t j = 0; j < shares.size(); ++j) sure[j] ? taken += 1 : free_sum += std::max(shares[j], 1e-9);
-    const double scale = free_sum > 0 ? std::max(0.0, static_cast<double>(n) - taken) / free_sum : 0;
-    bool capped = false;
-    for (std::size_t j = 0; j < shares.size(); ++j) {
-      if (sure[j]) continue;
-      pi[j] = scale * std::max(shares[j], 1e-9);
-      if (pi[j] >= 1) pi[j] = 1, sure[j] = true, capped = true;
-    }
-    if (!capped) break;
-  }
-  return pi;
-}
-
-double pareto_rank(double u, double pi) {
-  if (pi >= 1) return 0;
-  if (pi <= 0) return std::numeric_limits<double>::infinity();
-  return u * (1 - pi) / ((1 - u) * pi);
-}
-
-std::vector<std::vector<double>> received_share_table(const GnssTrainingData& data) {
-  const double mask = data.elevation_mask_deg;
-  const std::size_t el_bins = static_cast<std::size_t>(std::ceil((90 - mask) / kElevationBinDeg - 1e-9));
-  const double top = data.heights_m.empty() ? 0 : *std::max_element(data.heights_m.begin(), data.heights_m.end());
-  const std::size_t h_bins = static_cast<std::size_t>(top / kShareHeightBinM) + 1;
-  std::vector<std::vector<double>> seen(h_bins, std::vector<double>(el_bins, 0.0)), got = seen;
-  std::vector<double> seen_el(el_bins, 0.0), got_el(el_bins, 0.0);
-  double seen_all = 0, got_all = 0;
-  for (const TrainingSatellite& t : data.sky) {
-    const std::size_t hb = height_bin(data.heights_m[t.position], h_bins), b = elevation_bin(t.elevation_deg, mask, el_bins);
-    const double r = t.received ? 1 : 0;
-    seen[hb][b] += 1, got[hb][b] += r, seen_el[b] += 1, got_el[b] += r, seen_all += 1, got_all += r;
-  }
-  const double overall = seen_all > 0 ? got_all / seen_all : 1.0;
-  std::vector<std::vector<double>> share(h_bins, std::vector<double>(el_bins, 0.0));
-  for (std::size_t b = 0; b < el_bins; ++b) {
-    const double prior = (got_el[b] + kSharePriorSatellites * overall) / (seen_el[b] + kSharePriorSatellites);
-    for (std::size_t hb = 0; hb < h_bins; ++hb) {
-      share[hb][b] = (got[hb][b] + kSharePriorSatellites * prior) / (seen[hb][b] + kSharePriorSatellites);
-    }
-  }
-  return share;
-}
-
-
-double received_share_at(const LearnedGnssModel& model, double height_m, double elevation_deg) {
-  const auto& table = model.received_share;
-  if (table.empty() || table[0].empty()) return 1.0;
-  const std::size_t b = elevation_bin(elevation_deg, model.elevation_mask_deg, table[0].size());
-  // Linear in height between the bins' centres, constant beyond the first and last.
-  const double x = std::clamp(height_m / kShareHeightBinM - 0.5, 0.0, static_cast<double>(table.size() - 1));
-  const std::size_t lo = static_cast<std::size_t>(x), hi = std::min(lo + 1, table.size() - 1);
-  return table[lo][b] + (x - static_cast<double>(lo)) * (table[hi][b] - table[lo][b]);
-}
 
 std::vector<Eigen::Vector3d> random_city_positions(const SceneHints& hints, const std::array<double, 4>& area_W,
                                                    const GnssTrainingConfig& config, std::uint64_t seed) {
   if (!(area_W[2] > area_W[0]) || !(area_W[3] > area_W[1])) {
     throw InputError("gnss.model learned: the training area is empty");
   }
-  std::seed_seq seq = stream(seed, kStreamPositions);
-  std::mt19937_64 rng(seq);
   std::uniform_real_distribution<double> ue(area_W[0], area_W[2]), un(area_W[1], area_W[3]);
-  std::uniform_real_distribution<double> uh(config.min_height_m, tallest_top_m(hints) + config.height_margin_m);
-  std::vector<Eigen::Vector3d> out;
-  for (std::size_t tries = 0; out.size() < config.positions; ++tries) {
-    if (tries > 100 * config.positions + 1000) {
-      throw InputError("gnss.model learned: the training area is (almost) all buildings");
-    }
-    const double e = ue(rng), n = un(rng), h = uh(rng);
-    if (inside_footprint(hints, e, n, config.footprint_margin_m)) continue;
-    out.emplace_back(e, n, hints.ground_z_m + h);
-  }
-  return out;
+  const auto draw = [&](std::mt19937_64& rng) {
+    const double e = ue(rng);
+    return Eigen::Vector2d(e, un(rng));
+  };
+  return sample_positions(hints, config, seed, draw, [](const Eigen::Vector2d&) { return true; }, "the training area");
 }
 
 std::vector<Eigen::Vector3d> random_track_positions(const SceneHints& hints, const std::vector<Eigen::Vector3d>& track_W,
                                                     const GnssTrainingConfig& config, std::uint64_t seed) {
   if (track_W.empty() || !(config.track_radius_m > 0)) throw InputError("gnss.model learned: no track to train along");
-  std::seed_seq seq = stream(seed, kStreamPositions);
-  std::mt19937_64 rng(seq);
   std::uniform_int_distribution<std::size_t> which(0, track_W.size() - 1);
   std::uniform_real_distribution<double> unit(0, 1);
-  std::uniform_real_distribution<double> uh(config.min_height_m, tallest_top_m(hints) + config.height_margin_m);
-  const std::array<double, 4>& x = hints.extent_W;
-  std::vector<Eigen::Vector3d> out;
-  for (std::size_t tries = 0; out.size() < config.positions; ++tries) {
-    if (tries > 100 * config.positions + 1000) {
-      throw InputError("gnss.model learned: the track's neighbourhood is (almost) all buildings");
-    }
+  // A point of the track, then uniform in the disc of track_radius_m around it.
+  const auto draw = [&](std::mt19937_64& rng) {
     const Eigen::Vector3d& c = track_W[which(rng)];
-    const double r = config.track_radius_m * std::sqrt(unit(rng)), a = 2 * std::numbers::pi * unit(rng);
-    const double e = c.x() + r * std::cos(a), n = c.y() + r * std::sin(a), h = uh(rng);
-    if (e < x[0] || e > x[2] || n < x[1] || n > x[3] || inside_footprint(hints, e, n, config.footprint_margin_m)) continue;
-    out.emplace_back(e, n, hints.ground_z_m + h);
-  }
-  return out;
+    const double r = config.track_radius_m * std::sqrt(unit(rng));
+    const double a = 2 * std::numbers::pi * unit(rng);
+    return Eigen::Vector2d(c.x() + r * std::cos(a), c.y() + r * std::sin(a));
+  };
+  const std::array<double, 4>& x = hints.extent_W;
+  const auto inside_city = [&](const Eigen::Vector2d& p) {
+    return p.x() >= x[0] && p.x() <= x[2] && p.y() >= x[1] && p.y() <= x[3];
+  };
+  return sample_positions(hints, config, seed, draw, inside_city, "the track's neighbourhood");
 }
 
 GnssTrainingData trace_training_data(const std::vector<Eigen::Vector3d>& positions_W,
