@@ -10,6 +10,7 @@
 #include "twinslam/core/error.hpp"
 #include "twinslam/dds/convert.hpp"
 #include "twinslam/geometry/information_order.hpp"
+#include "twinslam/geometry/so3.hpp"
 
 namespace twinslam::estimator {
 namespace {
@@ -87,6 +88,18 @@ void EstimatorNode::report_fusion() {
   }
 }
 
+void EstimatorNode::log_camera_calibration(std::int64_t stamp_ns) {
+  // Every 30 s of data: what the online calibration made of the camera rotation (camera_calibration.hpp).
+  if (estimator_.config().camera_rotation_sigma_deg <= 0.0 || stamp_ns - calibration_logged_ns_ < 30'000'000'000) {
+    return;
+  }
+  calibration_logged_ns_ = stamp_ns;
+  const Eigen::Matrix3d R_C0C = estimator_.config().T_BC.linear().transpose() * estimator_.camera_extrinsics().linear();
+  const Eigen::Vector3d phi_deg = geometry::so3_log(R_C0C) * 180.0 / M_PI;
+  spdlog::info("camera rotation correction at {:.1f} s: ({:.3f}, {:.3f}, {:.3f}) deg (camera axes)", 1e-9 * stamp_ns,
+               phi_deg.x(), phi_deg.y(), phi_deg.z());
+}
+
 void EstimatorNode::apply(const GlobalInput& input) {
   // On the worker thread, in stamp order relative to the frames.
   if (const auto* r = std::get_if<msg::Registration>(&input)) {
@@ -154,6 +167,7 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
       counters_.add("init_timeout_reported");
       spdlog::warn("neither rest nor a motion initialization succeeded within init_timeout_s");
     }
+    log_camera_calibration(m.stamp_ns());
     if (const auto& map = estimator_.local_map()) {
       msg::LocalMap lm;
       lm.vehicle_id(m.vehicle_id());

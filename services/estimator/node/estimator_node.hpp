@@ -48,6 +48,7 @@ class EstimatorNode {
   void apply(const GlobalInput& input);
   void process(const msg::FeatureFrame& frame);
   void report_fusion();
+  void log_camera_calibration(std::int64_t stamp_ns);
 
   dds::Node& node_;
   dds::Counters& counters_;
@@ -63,6 +64,7 @@ class EstimatorNode {
   dds::Writer<msg::FrameAck> ack_;
 
   unsigned long long odom_seq_ = 0, map_seq_ = 0;
+  std::int64_t calibration_logged_ns_ = 0;  // stamp of the last log line of the camera rotation calibration
   // Frames are processed once the IMU reaches their stamp, or after imu_wait; global inputs in stamp order with them
   // (see SensorWorker).
   SensorWorker<msg::FeatureFrame, ImuSample, GlobalInput> worker_;  // last: its thread uses the members above

@@ -68,34 +68,48 @@ Prediction predict(const double* pose_a, const double* pose_j, double rho, const
 
 }  // namespace
 
-Eigen::Vector3d ReprojectionFactor::predicted_scaled_point(const double* pose_a, const double* pose_j,
-                                                           double rho) const {
-  return predict(pose_a, pose_j, rho, f_Ca_, R_BC_, t_BC_).h;
+Eigen::Vector3d ReprojectionFactor::predicted_scaled_point(const double* pose_a, const double* pose_j, double rho,
+                                                           const Eigen::Matrix3d* R_BC) const {
+  return predict(pose_a, pose_j, rho, f_Ca_, R_BC != nullptr ? *R_BC : R_BC_, t_BC_).h;
 }
 
-bool ReprojectionFactor::in_front(const double* pose_a, const double* pose_j, double rho) const {
-  return rho >= 0.0 && predicted_scaled_point(pose_a, pose_j, rho).dot(f_Cj_) > 0.0;
+bool ReprojectionFactor::in_front(const double* pose_a, const double* pose_j, double rho,
+                                  const Eigen::Matrix3d* R_BC) const {
+  return rho >= 0.0 && predicted_scaled_point(pose_a, pose_j, rho, R_BC).dot(f_Cj_) > 0.0;
 }
 
-double ReprojectionFactor::angular_error(const double* pose_a, const double* pose_j, double rho) const {
-  const Eigen::Vector3d h = predicted_scaled_point(pose_a, pose_j, rho);
+double ReprojectionFactor::angular_error(const double* pose_a, const double* pose_j, double rho,
+                                         const Eigen::Matrix3d* R_BC) const {
+  const Eigen::Vector3d h = predicted_scaled_point(pose_a, pose_j, rho, R_BC);
   return std::atan2(h.cross(f_Cj_).norm(), h.dot(f_Cj_));
 }
 
 bool ReprojectionFactor::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
+  return evaluate_with(R_BC_, parameters, residuals, jacobians, nullptr);
+}
+
+bool ReprojectionFactor::evaluate_with(const Eigen::Matrix3d& R_BC, double const* const* parameters,
+                                       double* residuals, double** jacobians, double* dr_dphi) const {
   const double rho = parameters[2][0];
-  const Prediction P = predict(parameters[0], parameters[1], rho, f_Ca_, R_BC_, t_BC_);
+  const Prediction P = predict(parameters[0], parameters[1], rho, f_Ca_, R_BC, t_BC_);
   const double n = P.h.norm();
   if (!(n > 0.0) || !std::isfinite(n)) return false;
   const Eigen::Vector3d b = P.h / n;
   // [t1 t2]^T f_Cj = 0, so the residual s [t1 t2]^T (b - f_Cj) is s [t1 t2]^T b.
   Eigen::Map<Eigen::Vector2d>{residuals} = scaled_basis_T_ * b;
-  if (jacobians == nullptr) return true;
+  if (jacobians == nullptr && dr_dphi == nullptr) return true;
 
   // Chain rule through the normalization: d(h/|h|)/dh = (I - b b^T) / |h|.
   const Eigen::Matrix<double, 2, 3> dr_dh = scaled_basis_T_ * (Eigen::Matrix3d::Identity() - b * b.transpose()) / n;
-  const Eigen::Matrix<double, 2, 3> dr_dq = dr_dh * R_BC_.transpose();
+  const Eigen::Matrix<double, 2, 3> dr_dq = dr_dh * R_BC.transpose();
   const Eigen::Matrix<double, 2, 3> dr_dw = dr_dq * P.R_j.transpose();
+  if (dr_dphi != nullptr) {
+    // R_BC Exp(phi) enters twice: a = R_BC Exp(phi) f_Ca + ... gives -R_BC [f_Ca]x phi, and
+    // h = Exp(-phi) R_BC^T q gives [h]x phi.
+    Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>>{dr_dphi} =
+        dr_dh * geometry::skew(P.h) - dr_dw * P.R_a * R_BC * geometry::skew(f_Ca_);
+  }
+  if (jacobians == nullptr) return true;
   using PoseJacobian = Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor>;
   // Pose blocks: p_L + dp enters w linearly; R_LB Exp(dtheta) gives d(R_a a) = -R_a [a]x dtheta for the anchor and
   // d(R_j^T w) = [R_j^T w]x dtheta for the observer.

@@ -17,6 +17,7 @@ const char* to_string(TermKind kind) {
     case TermKind::kMarginalizationPrior: return "marginalization_prior";
     case TermKind::kReprojection: return "reprojection";
     case TermKind::kWorldPrior: return "world_prior";
+    case TermKind::kCameraPrior: return "camera_prior";
     case TermKind::kProvider: return "provider";
   }
   return "unknown";

@@ -41,6 +41,9 @@ void SlidingWindowConfig::validate() const {
   positive(max_accel_bias_mps2, "max_accel_bias_mps2");
   positive(max_median_reprojection_px, "max_median_reprojection_px");
   if (!T_BC.matrix().allFinite()) throw InputError("sliding_window.T_BC: not finite");
+  if (!(camera_rotation_sigma_deg >= 0.0) || !(camera_rotation_sigma_deg <= 10.0)) {
+    throw InputError("sliding_window.camera_rotation_sigma_deg: must be in [0, 10] (0: fixed R_BC)");
+  }
   imu.validate();
   reprojection_noise().validate();
   static_init().validate();

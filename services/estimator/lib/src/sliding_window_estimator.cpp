@@ -138,7 +138,7 @@ bool is_keyframe(const WindowState& s, const WindowFrame& kf, const WindowFrame&
   KeyframeInput in;
   in.tracked = tracked;
   in.keyframe_features = kf.bearings.size();
-  const Eigen::Matrix3d R_BC = c.T_BC.linear();
+  const Eigen::Matrix3d R_BC = camera_T_BC(s).linear();
   const Eigen::Matrix3d dR = kf.T_LB().linear().transpose() * cur.T_LB().linear();
   in.R_CkCc = R_BC.transpose() * dR * R_BC;
   KeyframePolicyConfig kc = c.keyframe;
@@ -203,7 +203,7 @@ std::optional<MotionInitResult> try_init_in_motion(WindowState& s, std::int64_t 
   const auto window_ns = static_cast<std::int64_t>(c.window_s * 1e9);
   while (s.init_frames.size() > 1 && stamp_ns - s.init_frames.front().stamp_ns > window_ns) s.init_frames.pop_front();
   const std::vector<MotionInitFrame> frames(s.init_frames.begin(), s.init_frames.end());
-  return try_motion_init(frames, s.imu, s.config.T_BC, s.config.imu, s.config.gravity_mps2, s.config.focal_px, c);
+  return try_motion_init(frames, s.imu, camera_T_BC(s), s.config.imu, s.config.gravity_mps2, s.config.focal_px, c);
 }
 }  // namespace
 
@@ -233,6 +233,8 @@ void SlidingWindowEstimator::add_factor_provider(std::shared_ptr<WindowFactorPro
 
 const std::optional<LocalMapEstimate>& SlidingWindowEstimator::local_map() const { return s_->local_map; }
 std::size_t SlidingWindowEstimator::landmark_count() const { return s_->landmarks.size(); }
+
+Eigen::Isometry3d SlidingWindowEstimator::camera_extrinsics() const { return camera_T_BC(*s_); }
 const SlidingWindowConfig& SlidingWindowEstimator::config() const { return s_->config; }
 std::size_t SlidingWindowEstimator::keyframe_count() const {
   return static_cast<std::size_t>(std::count_if(s_->frames.begin(), s_->frames.end(), [](const auto& f) { return f->keyframe; }));

@@ -21,7 +21,7 @@ void reanchor_landmarks(WindowState& s, const WindowFrame& k0) {
         const auto b = f.bearings.find(lm.id);
         if (b == f.bearings.end() || !f.keyframe) continue;
         lm.rho = it->second.rho;
-        if (const auto moved = reanchor(lm, k0.T_LB(), f.T_LB(), s.config.T_BC, f.id, b->second)) {
+        if (const auto moved = reanchor(lm, k0.T_LB(), f.T_LB(), camera_T_BC(s), f.id, b->second)) {
           lm = *moved;
           it->second.rho = moved->rho;
           keep = true;

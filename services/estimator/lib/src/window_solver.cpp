@@ -7,6 +7,7 @@
 
 #include <ceres/ceres.h>
 
+#include "twinslam/estimator/camera_calibration.hpp"
 #include "twinslam/estimator/imu_factor.hpp"
 #include "twinslam/estimator/reprojection_factor.hpp"
 #include "twinslam/estimator/sliding_window_state.hpp"
@@ -21,9 +22,11 @@ std::pair<double, bool> reprojection_error_px(WindowState& s, const ResidualTerm
   const WindowLandmark& lm = s.landmarks.at(t.landmark);
   const WindowFrame* anchor = find_frame(s, lm.lm.anchor_keyframe);
   const WindowFrame* frame = find_frame(s, t.frame);
-  const auto& factor = static_cast<const ReprojectionFactor&>(*t.cost);
-  return {factor.angular_error(anchor->pose.data(), frame->pose.data(), lm.rho) * s.config.focal_px,
-          factor.in_front(anchor->pose.data(), frame->pose.data(), lm.rho)};
+  const auto* factor = dynamic_cast<const ReprojectionFactor*>(t.cost.get());
+  if (factor == nullptr) factor = &static_cast<const CameraRotationFactor&>(*t.cost).reprojection();
+  const Eigen::Matrix3d R_BC = camera_T_BC(s).linear();
+  return {factor->angular_error(anchor->pose.data(), frame->pose.data(), lm.rho, &R_BC) * s.config.focal_px,
+          factor->in_front(anchor->pose.data(), frame->pose.data(), lm.rho, &R_BC)};
 }
 
 // Largest angle [deg] between the anchor keyframe's ray to landmark `id` and another observer's, both in L.
@@ -84,7 +87,7 @@ void triangulate_new_landmarks(WindowState& s) {
     return a.obs.size() != b.obs.size() ? a.obs.size() > b.obs.size() : a.id < b.id;
   });
   for (const Candidate& c : candidates) {
-    const TriangulationResult r = triangulate(tc, c.obs, s.config.T_BC, 0);
+    const TriangulationResult r = triangulate(tc, c.obs, camera_T_BC(s), 0);
     if (!r.ok()) continue;
     WindowLandmark lm;
     lm.lm.id = c.id;
@@ -166,6 +169,7 @@ SolveSummary solve_window(WindowState& s) {
 std::vector<LandmarkEstimate> window_landmarks(const WindowState& s) {
   std::vector<LandmarkEstimate> out;
   const double threshold = s.config.outlier_threshold_px;
+  const Eigen::Isometry3d T_BC = camera_T_BC(s);
   for (const auto& [id, lm] : s.landmarks) {
     const WindowFrame* anchor = nullptr;
     std::vector<const WindowFrame*> observers;
@@ -176,20 +180,20 @@ std::vector<LandmarkEstimate> window_landmarks(const WindowState& s) {
     if (anchor == nullptr || observers.size() < 2) continue;
     LandmarkEstimate e;
     e.id = id;
-    e.p_L = point_in_local(anchor->T_LB(), s.config.T_BC, lm.lm.f_Ca, lm.rho);
+    e.p_L = point_in_local(anchor->T_LB(), T_BC, lm.lm.f_Ca, lm.rho);
     // Quality in [0, 1]: more observations (saturating at 5), more parallax (saturating at 5 deg) and a smaller
     // reprojection error each raise it; the product is small when any of them is poor. The parallax is that of the
     // keyframes observing it now, not at triangulation: a landmark first triangulated from a short baseline gains
     // parallax as later keyframes see it, and its depth is then as well determined as any other's.
-    const double parallax_deg = std::max(lm.parallax_deg, current_parallax_deg(s.config.T_BC, *anchor, observers, id));
+    const double parallax_deg = std::max(lm.parallax_deg, current_parallax_deg(T_BC, *anchor, observers, id));
     const double q_obs = std::min(1.0, (static_cast<double>(observers.size()) - 1.0) / 4.0);
     const double q_parallax = std::min(1.0, parallax_deg / 5.0);
     const double q_error = std::clamp(1.0 - lm.mean_error_px / threshold, 0.0, 1.0);
     e.quality = q_obs * q_parallax * q_error;
     std::vector<Eigen::Vector3d> centres;
     centres.reserve(observers.size());
-    for (const WindowFrame* f : observers) centres.push_back((f->T_LB() * s.config.T_BC).translation());
-    const Eigen::Isometry3d T_LCa = anchor->T_LB() * s.config.T_BC;
+    for (const WindowFrame* f : observers) centres.push_back((f->T_LB() * T_BC).translation());
+    const Eigen::Isometry3d T_LCa = anchor->T_LB() * T_BC;
     e.cov_L = landmark_covariance_L(T_LCa.translation(), (T_LCa.linear() * lm.lm.f_Ca).normalized(), lm.rho, centres,
                                     s.config.pixel_sigma / s.config.focal_px);
     out.push_back(e);

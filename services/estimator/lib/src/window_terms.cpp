@@ -2,9 +2,12 @@
 // priors, bearing reprojections, the world-alignment prior and every provider's terms. The solve and the
 // marginalization both build it here, in this order (the order of the Ceres residual blocks, kept from issue 5 so VIO
 // results are unchanged).
+#include <cmath>
+
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
 
+#include "twinslam/estimator/camera_calibration.hpp"
 #include "twinslam/estimator/imu_factor.hpp"
 #include "twinslam/estimator/reprojection_factor.hpp"
 #include "twinslam/estimator/sliding_window_state.hpp"
@@ -52,6 +55,11 @@ void add_prior_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
     t.blocks = s.prior->parameter_blocks();
     terms.push_back(std::move(t));
   }
+  if (calibrates_camera(s)) {
+    terms.push_back(make_term(TermKind::kCameraPrior, "camera rotation prior",
+                              new_camera_rotation_prior(s.config.camera_rotation_sigma_deg * M_PI / 180.0), nullptr,
+                              {s.phi_BC.data()}));
+  }
 }
 
 void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
@@ -66,9 +74,14 @@ void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
       if (it == f->bearings.end()) continue;
       ResidualTerm t;
       t.kind = TermKind::kReprojection;
-      t.cost = std::make_shared<ReprojectionFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
       t.loss = loss;
       t.blocks = {anchor->pose.data(), f->pose.data(), &lm.rho};
+      if (calibrates_camera(s)) {
+        t.cost = std::make_shared<CameraRotationFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
+        t.blocks.push_back(s.phi_BC.data());
+      } else {
+        t.cost = std::make_shared<ReprojectionFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
+      }
       t.landmark = id;
       t.frame = f->id;
       terms.push_back(std::move(t));
@@ -77,6 +90,12 @@ void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
 }
 
 }  // namespace
+
+bool calibrates_camera(const WindowState& s) { return s.config.camera_rotation_sigma_deg > 0.0; }
+
+Eigen::Isometry3d camera_T_BC(const WindowState& s) {
+  return calibrates_camera(s) ? calibrated_T_BC(s.config.T_BC, s.phi_BC.data()) : s.config.T_BC;
+}
 
 WindowFrame* find_frame(WindowState& s, std::int64_t id) {
   for (auto& f : s.frames) {

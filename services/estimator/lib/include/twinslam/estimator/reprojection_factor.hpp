@@ -3,7 +3,8 @@
 // the optical axis) alike: the tracking front end unprojects pixels to bearings with the camera model once.
 //
 // Parameter blocks: anchor pose [7] = T_LB of the anchor keyframe, observing pose [7] = T_LB of keyframe j,
-// inverse depth [1] (landmark.hpp). Camera extrinsics T_BC are fixed at construction.
+// inverse depth [1] (landmark.hpp). Camera extrinsics T_BC are fixed at construction; CameraRotationFactor
+// (camera_calibration.hpp) estimates a correction of their rotation with the same prediction (evaluate_with()).
 //
 // Prediction (homogeneous, scaled by rho so that rho -> 0, a point at infinity, stays finite; the visual residual of
 // VINS-Mono, Sec. VI, up to the scale):
@@ -57,13 +58,19 @@ class ReprojectionFactor final : public ceres::SizedCostFunction<2, kPoseSize, k
   // Jacobians w.r.t. the ambient coordinates, like ImuFactor: closed-form derivatives w.r.t. p_L + dp and the right
   // perturbation R_LB Exp(dtheta), times geometry::right_perturbation_jacobian(q) for the quaternion.
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+  // The same with the camera rotation R_BC in place of the constructed one (t_BC stays). dr_dphi (2x3 row-major,
+  // may be null) receives the Jacobian w.r.t. phi of R_BC Exp(phi) at phi = 0, the right perturbation of R_BC.
+  bool evaluate_with(const Eigen::Matrix3d& R_BC, double const* const* parameters, double* residuals,
+                     double** jacobians, double* dr_dphi) const;
 
-  // h = rho p_Cj (see above) for the given blocks.
-  Eigen::Vector3d predicted_scaled_point(const double* pose_a, const double* pose_j, double rho) const;
+  // h = rho p_Cj (see above) for the given blocks; R_BC null: the constructed rotation.
+  Eigen::Vector3d predicted_scaled_point(const double* pose_a, const double* pose_j, double rho,
+                                         const Eigen::Matrix3d* R_BC = nullptr) const;
   // Cheirality: the predicted point lies on the observed side (angle to f_Cj below 90 deg) and rho >= 0.
-  bool in_front(const double* pose_a, const double* pose_j, double rho) const;
+  bool in_front(const double* pose_a, const double* pose_j, double rho, const Eigen::Matrix3d* R_BC = nullptr) const;
   // Angle between predicted and observed bearings [rad], for outlier removal (times focal_px gives px).
-  double angular_error(const double* pose_a, const double* pose_j, double rho) const;
+  double angular_error(const double* pose_a, const double* pose_j, double rho,
+                       const Eigen::Matrix3d* R_BC = nullptr) const;
 
   const Eigen::Vector3d& observed_bearing() const { return f_Cj_; }
   const Eigen::Vector3d& anchor_bearing() const { return f_Ca_; }

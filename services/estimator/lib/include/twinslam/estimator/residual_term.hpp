@@ -27,6 +27,7 @@ enum class TermKind {
   kMarginalizationPrior,  // information of the keyframes that left the window
   kReprojection,          // bearing reprojection of a landmark anchored in another keyframe
   kWorldPrior,            // prior on the world alignment T_WL (from an initial alignment)
+  kCameraPrior,           // prior of the online camera-rotation calibration (camera_calibration.hpp)
   kProvider,              // added by a WindowFactorProvider (map registration, GNSS, ...)
 };
 const char* to_string(TermKind kind);

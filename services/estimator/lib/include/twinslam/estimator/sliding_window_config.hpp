@@ -26,7 +26,10 @@ struct SlidingWindowConfig {
   double focal_px = 460.0;             // fu of the camera: px per radian, converts angles to px [px/rad]
   double pixel_sigma = 1.0;            // feature noise [px]
   ImuNoise imu;                        // continuous-time IMU noise (EuRoC imu0/sensor.yaml keys)
-  Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();  // camera in body
+  Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();  // camera in body (nominal, from the dataset)
+  // Online calibration of the camera rotation (camera_calibration.hpp): prior sigma per axis of R_BC's correction
+  // around the nominal T_BC [deg]; 0 keeps R_BC fixed.
+  double camera_rotation_sigma_deg = 0.0;
   double gravity_mps2 = 9.81;          // |g| [m/s^2]
 
   // Initialization. A rest window of 0.5 s suffices for the simulator's ~0.8 s of rest at the start.

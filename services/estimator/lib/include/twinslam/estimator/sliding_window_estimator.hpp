@@ -104,6 +104,9 @@ class SlidingWindowEstimator {
   const std::optional<LocalMapEstimate>& local_map() const;
   std::size_t keyframe_count() const;
   std::size_t landmark_count() const;     // triangulated landmarks in the window
+  // The camera in the body as estimated now: the configured T_BC with its online rotation correction (the configured
+  // T_BC itself while config().camera_rotation_sigma_deg is 0).
+  Eigen::Isometry3d camera_extrinsics() const;
   const SlidingWindowConfig& config() const;
 
  private:

@@ -63,6 +63,10 @@ struct WindowState {
   std::array<double, kWorldAlignmentSize> T_WL{};
   std::optional<ResidualTerm> world_prior;
   bool world_aligned = false;
+
+  // Correction of the camera rotation (camera_calibration.hpp), estimated when config.camera_rotation_sigma_deg > 0.
+  // Kept across re-initializations: it belongs to the sensor, not to L.
+  std::array<double, 3> phi_BC{};
 };
 
 // Result of one window solve (window_solver.cpp).
@@ -71,6 +75,9 @@ struct SolveSummary {
   int outliers_removed = 0;
 };
 
+// The camera in the body as the window estimates it now (the nominal config.T_BC unless calibrated online).
+Eigen::Isometry3d camera_T_BC(const WindowState& s);
+bool calibrates_camera(const WindowState& s);
 // Prior sigmas of the first keyframe after a static initialization (config's init_* values).
 StatePriorSigmas static_init_prior_sigmas(const SlidingWindowConfig& c);
 // The window's frame with this id, or null.
