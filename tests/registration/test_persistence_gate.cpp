@@ -155,6 +155,50 @@ TEST(RegistrationPersistenceGate, AWholeFrameHeadingErrorAgreesFromKeyframesArou
   }
 }
 
+RegistrationResult accepted(double dx_m, double dyaw_deg = 0.0) {
+  RegistrationResult r = refused(dx_m, dyaw_deg);
+  r.status = RegistrationStatus::kAccepted;
+  r.reason.clear();
+  r.information = r.details.information;
+  return r;
+}
+
+// While the estimator's heading is uncertain (a GNSS start in a canyon), one search can end in a wrong basin that no
+// other keyframe confirms: a large accepted correction waits for the votes; a small one, or any once the heading is
+// known, goes through at once.
+TEST(RegistrationPersistenceGate, WhileAcquiringALargeCorrectionWaitsForConfirmation) {
+  PersistenceGate gate(config(3, 4.0));
+  RegistrationResult wrong = accepted(4.5, -3.8);
+  EXPECT_FALSE(gate.review(wrong, at(25), 15.0));
+  EXPECT_EQ(wrong.status, RegistrationStatus::kCorrectionTooLarge);
+  EXPECT_TRUE(wrong.information.isZero());
+  EXPECT_NE(wrong.reason.find("unconfirmed"), std::string::npos) << wrong.reason;
+  // The right correction, found again and again as the cloud changes, with a heading-ambiguous result voting for it.
+  RegistrationResult a = accepted(8.0, 3.0), b = refused(8.1, 3.1), c = accepted(7.9, 3.05);
+  b.status = RegistrationStatus::kDegenerate;
+  b.heading_ambiguous = true;
+  EXPECT_FALSE(gate.review(a, at(26), 15.0));
+  EXPECT_FALSE(gate.review(b, at(28), 12.0));
+  EXPECT_EQ(b.status, RegistrationStatus::kDegenerate);  // votes, never admitted itself
+  EXPECT_TRUE(gate.review(c, at(30), 12.0));              // a, b, c over 4 s
+  EXPECT_EQ(c.status, RegistrationStatus::kAccepted);
+  EXPECT_EQ(c.information, c.details.information);
+  // Small corrections, and large ones once the heading sigma is below acquisition_heading_sigma_deg (3 deg), pass.
+  RegistrationResult small = accepted(0.4, 0.3), sure = accepted(4.5, -3.8), unknown = accepted(4.5, -3.8);
+  EXPECT_FALSE(gate.review(small, at(31), 15.0));
+  EXPECT_FALSE(gate.review(sure, at(32), 2.0));
+  EXPECT_FALSE(gate.review(unknown, at(33)));  // no covariance sent: nothing to judge by
+  EXPECT_EQ(small.status, RegistrationStatus::kAccepted);
+  EXPECT_EQ(sure.status, RegistrationStatus::kAccepted);
+  EXPECT_EQ(unknown.status, RegistrationStatus::kAccepted);
+  RegistrationConfig off = config(3, 4.0);
+  off.acquisition_heading_sigma_deg = 0.0;
+  PersistenceGate no_acquisition(off);
+  RegistrationResult d = accepted(4.5, -3.8);
+  EXPECT_FALSE(no_acquisition.review(d, at(1), 15.0));
+  EXPECT_EQ(d.status, RegistrationStatus::kAccepted);
+}
+
 TEST(RegistrationPersistenceGate, ZeroTurnsItOff) {
   PersistenceGate gate(config(0, 0.0));
   for (int i = 0; i < 10; ++i) {

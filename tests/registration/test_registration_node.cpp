@@ -202,7 +202,8 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
   far.T_WL(dds::to_msg(away));
   maps_out.publish(far);
   // The same cloud with the estimator's covariance (rotation first): 0.2 deg / 5 cm cannot explain a 1 m / 3 deg
-  // correction; 5 deg / 2 m can; a matrix that is no covariance is ignored (counted), not fatal.
+  // correction; 2.5 deg / 2 m can; at 5 deg the estimator is still acquiring its heading, so that correction waits
+  // for agreeing keyframes (persistence_gate.hpp); a matrix that is no covariance is ignored (counted), not fatal.
   const auto with_covariance = [&](const char* vehicle, double sigma_deg, double sigma_m, double off_diagonal) {
     msg::LocalMap c = lm;
     c.vehicle_id(vehicle);
@@ -210,11 +211,12 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
     maps_out.publish(c);
   };
   with_covariance("uav9", 0.2, 0.05, 0.0);
-  with_covariance("uav10", 5.0, 2.0, 0.0);
+  with_covariance("uav10", 2.5, 2.0, 0.0);
   with_covariance("uav11", 1.0, 1.0, 5.0);  // not positive definite
+  with_covariance("uav12", 5.0, 2.0, 0.0);
   ASSERT_TRUE(testing::wait_for([&] {
     std::lock_guard lock(m);
-    return got.size() >= 5;
+    return got.size() >= 6;
   }, 30s));
   std::lock_guard lock(m);
   const auto of = [&](const std::string& vehicle) -> const msg::Registration& {
@@ -224,6 +226,8 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
   EXPECT_NE(of("uav9").reason().find("Mahalanobis"), std::string::npos) << of("uav9").reason();
   EXPECT_EQ(of("uav10").status(), msg::REG_ACCEPTED) << of("uav10").reason();
   EXPECT_EQ(of("uav11").status(), msg::REG_ACCEPTED) << of("uav11").reason();
+  EXPECT_EQ(of("uav12").status(), msg::REG_REJECTED_CORRECTION) << of("uav12").reason();
+  EXPECT_NE(of("uav12").reason().find("unconfirmed"), std::string::npos) << of("uav12").reason();
   EXPECT_EQ(counters.get("covariance_unusable"), 1u);
   const auto& ok = of("uav7");
   const auto& no = of("uav8");
@@ -235,7 +239,7 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
   EXPECT_GT(ok.inliers(), 300u);
   EXPECT_EQ(no.status(), msg::REG_REJECTED_NO_MAP);
   EXPECT_FALSE(no.reason().empty());
-  EXPECT_EQ(counters.get("registrations_out"), 5u);
+  EXPECT_EQ(counters.get("registrations_out"), 6u);
 }
 
 // An estimator sure of a wrong pose (0.2 deg / 5 cm against a 1 m / 3 deg error) sends keyframes 2.5 s apart: the

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -146,7 +147,9 @@ void RegistrationNode::serve(const Pending& p) {
       }
       RegistrationResult r = register_cloud(options_.registration, twin_.index(), source, covariance);
       PersistenceGate& gate = persistence_.try_emplace(m.vehicle_id(), options_.registration).first->second;
-      if (gate.review(r, static_cast<std::int64_t>(m.keyframe_stamp_ns()))) {
+      std::optional<double> heading_sigma_deg;  // about W's z: the covariance's rotation block comes first
+      if (covariance) heading_sigma_deg = std::sqrt((*covariance)(2, 2)) * 180.0 / M_PI;
+      if (gate.review(r, static_cast<std::int64_t>(m.keyframe_stamp_ns()), heading_sigma_deg)) {
         counters_.add("readmitted_persistent");
         out.readmitted(true);
       }

@@ -16,11 +16,33 @@ bool PersistenceGate::agrees(const Eigen::Isometry3d& a, const Eigen::Isometry3d
   return angle_rad <= config_.persistent_tolerance_deg * M_PI / 180.0 && (a * p_W - b * p_W).norm() <= tolerance_m;
 }
 
-bool PersistenceGate::review(RegistrationResult& r, std::int64_t stamp_ns) {
+bool PersistenceGate::hold_for_confirmation(RegistrationResult& r, double heading_sigma_deg) const {
+  const double moved_m = (r.correction_W * r.pivot_W - r.pivot_W).norm();
+  const double turned_deg = Eigen::AngleAxisd(r.correction_W.linear()).angle() * 180.0 / M_PI;
+  if (moved_m <= config_.acquisition_min_correction_m && turned_deg <= config_.acquisition_min_correction_deg) {
+    return false;
+  }
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "unconfirmed: a %.2f m / %.2f deg correction while the heading sigma is %.1f deg needs %d agreeing "
+                "keyframes",
+                moved_m, turned_deg, heading_sigma_deg, config_.acquisition_corrections);
+  r.status = RegistrationStatus::kCorrectionTooLarge;
+  r.information.setZero();
+  r.reason = buf;
+  return true;
+}
+
+bool PersistenceGate::review(RegistrationResult& r, std::int64_t stamp_ns, std::optional<double> heading_sigma_deg) {
+  const bool acquiring = config_.persistent_corrections > 0 && config_.acquisition_heading_sigma_deg > 0.0 &&
+                         heading_sigma_deg && *heading_sigma_deg > config_.acquisition_heading_sigma_deg;
+  const bool held = acquiring && r.accepted() && hold_for_confirmation(r, *heading_sigma_deg);
   // ICP that ran out of iterations still says where the cloud pulls: it votes, but only a converged correction the
   // Mahalanobis gate refused is ever let in. Measured on city-loops (realistic sensors): after a wrong declaration
-  // half of the right corrections were `not_converged` at 30 iterations, interleaved with refused ones.
-  const bool votes_only = r.status == RegistrationStatus::kNotConverged;
+  // half of the right corrections were `not_converged` at 30 iterations, interleaved with refused ones. While
+  // acquiring, a heading-ambiguous result votes for its best heading in the same way.
+  const bool votes_only =
+      r.status == RegistrationStatus::kNotConverged || (acquiring && r.heading_ambiguous);
   if ((r.status != RegistrationStatus::kCorrectionTooLarge && !votes_only) || config_.persistent_corrections == 0) {
     return false;
   }
@@ -44,8 +66,11 @@ bool PersistenceGate::review(RegistrationResult& r, std::int64_t stamp_ns) {
   refused_.push_back({stamp_ns, r.correction_W});
   if (votes_only) return false;
   const double span_s = 1e-9 * static_cast<double>(stamp_ns - oldest_ns);
-  if (votes < static_cast<std::size_t>(config_.persistent_corrections) || span_s < config_.persistent_span_s)
-    return false;
+  // A held correction needs its own (smaller) count: the estimator has not committed to any heading yet, so a wrong
+  // basin is not reinforced by the estimate, and each second of waiting is a second without W.
+  const int needed = held ? config_.acquisition_corrections : config_.persistent_corrections;
+  const double needed_span_s = held ? config_.acquisition_span_s : config_.persistent_span_s;
+  if (votes < static_cast<std::size_t>(needed) || span_s < needed_span_s) return false;
   char buf[200];
   std::snprintf(buf, sizeof buf,
                 "accepted: %zu of %zu refused keyframes over %.1f s gave this correction (Mahalanobis distance^2 %.2f)",

@@ -62,6 +62,7 @@ bool reject_fit(const RegistrationConfig& c, const IcpResult& icp, RegistrationR
 bool reject_heading(const YawSearchResult& search, RegistrationResult& r) {
   if (!search.ambiguous) return true;
   r.status = RegistrationStatus::kDegenerate;
+  r.heading_ambiguous = true;
   char buf[200];
   std::snprintf(buf, sizeof buf, "heading ambiguous: %zu points fit another heading, %zu the best (%d ICP starts)",
                 search.runner_up, search.support, search.starts);

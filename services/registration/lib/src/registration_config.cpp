@@ -74,6 +74,11 @@ const std::vector<Key>& keys() {
       {"persistent_tolerance_deg", &C::persistent_tolerance_deg},
       {"persistent_tolerance_fraction", &C::persistent_tolerance_fraction},
       {"persistent_span_s", &C::persistent_span_s},
+      {"acquisition_heading_sigma_deg", &C::acquisition_heading_sigma_deg},
+      {"acquisition_min_correction_m", &C::acquisition_min_correction_m},
+      {"acquisition_min_correction_deg", &C::acquisition_min_correction_deg},
+      {"acquisition_corrections", &C::acquisition_corrections},
+      {"acquisition_span_s", &C::acquisition_span_s},
   };
   return k;
 }
@@ -162,6 +167,16 @@ void RegistrationConfig::validate(const std::string& s) const {
         "persistent_tolerance_fraction", "must lie in [0, 1)", persistent_tolerance_fraction);
   // > 0: refusals older than 2 spans are forgotten, so a span of 0 would keep runs of one and silently turn it off
   check(pos(persistent_span_s), s, "persistent_span_s", "must be > 0 s", persistent_span_s);
+  check(nonneg(acquisition_heading_sigma_deg), s, "acquisition_heading_sigma_deg", "must be >= 0 deg (0: off)",
+        acquisition_heading_sigma_deg);
+  check(nonneg(acquisition_min_correction_m), s, "acquisition_min_correction_m", "must be >= 0 m",
+        acquisition_min_correction_m);
+  check(nonneg(acquisition_min_correction_deg), s, "acquisition_min_correction_deg", "must be >= 0 deg",
+        acquisition_min_correction_deg);
+  check(acquisition_corrections >= 1 && acquisition_corrections <= 100, s, "acquisition_corrections",
+        "must lie in [1, 100]", acquisition_corrections);
+  check(pos(acquisition_span_s) && acquisition_span_s <= 2.0 * persistent_span_s, s, "acquisition_span_s",
+        "must be > 0 s and at most 2 x persistent_span_s (older votes are forgotten)", acquisition_span_s);
 }
 
 RegistrationConfig parse_registration_config(const std::string& text, const std::string& file,

@@ -7,6 +7,7 @@
 // registrations in (mahalanobis_floor_m 0.2 / 0.3 m: ATE 0.68 -> 1.27 / 2.65 m); a wrong registration rarely repeats
 // the same wrong correction from keyframes a landmark horizon apart, with other landmarks; a drifted estimator does.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -33,12 +34,22 @@ class PersistenceGate {
   // looks. kNotConverged results (ICP out of iterations, still pulled toward where the cloud fits) count as refusals
   // that agree or not, but are never accepted themselves. Accepted results in between do not count against it.
   // Returns true when it re-admitted `r`. Off when config.persistent_corrections is 0.
-  bool review(RegistrationResult& r, std::int64_t stamp_ns);
+  //
+  // Acquisition: heading_sigma_deg is the estimator's (from the covariance it sent; nullopt without one). While it is
+  // above config.acquisition_heading_sigma_deg, an accepted correction larger than acquisition_min_correction_m/_deg
+  // is held as a refusal (status kCorrectionTooLarge, reason "unconfirmed ...") and admitted by the same votes, and
+  // heading-ambiguous results vote with their best heading. Why: a first alignment from GNSS in a street canyon is off
+  // by metres and degrees, the heading search then spans +-45 deg, and in a city of similar blocks one search can
+  // end in a wrong basin that no other keyframe confirms; accepted alone it was declared (city-loops, realistic
+  // sensors: 4.4 m / 3.8 deg off for 22 s), while the right heading keeps coming back as the cloud changes.
+  bool review(RegistrationResult& r, std::int64_t stamp_ns, std::optional<double> heading_sigma_deg = std::nullopt);
 
   std::size_t readmitted() const { return readmitted_; }
 
  private:
   bool agrees(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const Eigen::Vector3d& p_W) const;
+  // Turns an accepted large correction into a refusal while acquiring (see review()); true if it did.
+  bool hold_for_confirmation(RegistrationResult& r, double heading_sigma_deg) const;
 
   RegistrationConfig config_;
   struct Refusal {

@@ -44,6 +44,7 @@ struct RegistrationResult {
   double fitness = 0.0;  // inliers / source points
   int iterations = 0;
   int yaw_starts = 1;  // ICP runs of the heading search (yaw_search.hpp); 1 when the estimator is sure of its heading
+  bool heading_ambiguous = false;  // refused because another heading fit almost as well (correction: the best one's)
   StageTimes time;
 
   bool accepted() const { return status == RegistrationStatus::kAccepted; }

@@ -81,6 +81,14 @@ struct RegistrationConfig {
   double persistent_tolerance_deg = 1.0;  // [deg] rotation difference between them
   double persistent_tolerance_fraction = 0.1;  // translation tolerance at least this x the newest correction's [-]
   double persistent_span_s = 10.0;        // [s] the run spans at least this (local_map.horizon_s: other landmarks)
+  // Acquisition (persistence_gate.hpp): while the estimator's heading sigma is above this, a correction larger than
+  // acquisition_min_correction_m at the keyframe or acquisition_min_correction_deg is not accepted alone but must be
+  // confirmed by the persistence gate's votes (0: off).
+  double acquisition_heading_sigma_deg = 3.0;  // [deg] (the estimator declares its alignment below 3 deg)
+  double acquisition_min_correction_m = 1.0;   // [m]
+  double acquisition_min_correction_deg = 1.0;  // [deg]
+  int acquisition_corrections = 3;     // agreeing results (the held one included) that confirm it ...
+  double acquisition_span_s = 3.0;     // [s] ... over at least this
 
   bool operator==(const RegistrationConfig&) const = default;
 
