@@ -1,15 +1,20 @@
 // `twinslam run` on the EuRoC excerpt: all services start as processes, the whole dataset flows in lockstep, and
 // run.json records exactly what flowed.
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "subprocess.hpp"
+#include "wait_for.hpp"
 
 namespace fs = std::filesystem;
 using namespace twinslam;
+using namespace std::chrono_literals;
 
 TEST(Run, EurocExcerptFlowsThroughTheServices) {
   const fs::path out = fs::temp_directory_path() / ("twinslam_run_" + std::to_string(::getpid()));
@@ -56,4 +61,57 @@ TEST(Run, ConfigDirReachesTheServicesAndIsRecorded) {
   EXPECT_FALSE(fs::exists(out / "trajectory_local.tum"));  // but none was an estimate
   fs::remove_all(out);
   fs::remove_all(cfg);
+}
+
+namespace {
+
+// The pid of `parent`'s child whose command name starts with `comm` (/proc/PID/stat), or -1.
+pid_t child_named(pid_t parent, const std::string& comm) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;
+    const auto open = line.find('('), close = line.rfind(')');
+    if (open == std::string::npos || close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 2));
+    char state = 0;
+    pid_t ppid = 0;
+    rest >> state >> ppid;
+    if (ppid == parent && line.compare(open + 1, comm.size(), comm) == 0) return std::stoi(line.substr(0, open));
+  }
+  return -1;
+}
+
+}  // namespace
+
+// Issue 14: the edge services restart after a crash. Registration is killed with SIGKILL mid-flight; the run goes on,
+// brings it back, ends ok and lists the restart in run.json; the new process answers LocalMaps again.
+TEST(Run, AKilledRegistrationServiceIsRestartedAndTheRunEndsOk) {
+  const fs::path base = fs::temp_directory_path() / ("twinslam_run_restart_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--out",
+                                      (base / "tiny").string(), "--features", "--quiet"},
+                                     {}, std::chrono::seconds(120));
+  ASSERT_EQ(sim.exit_code, 0) << sim.out << sim.err;
+  test::Background run({test::bin("twinslam"), "run", (base / "tiny").string(), "--mode", "vio-twin", "--features",
+                        "--out", (base / "run").string(), "--domain", std::to_string(test::test_domain())});
+  pid_t registration = -1;
+  ASSERT_TRUE(twinslam::testing::wait_for([&] { return (registration = child_named(run.pid(), "twinslam-regist")) > 0; }, 60s))
+      << run.output();
+  // Some registrations first: LocalMaps come once the estimator has keyframes.
+  ASSERT_TRUE(twinslam::testing::wait_for([&] { return fs::exists(base / "run/logs/registration.log") &&
+                                          fs::file_size(base / "run/logs/registration.log") > 0; }, 60s));
+  std::this_thread::sleep_for(2s);
+  ASSERT_EQ(::kill(registration, SIGKILL), 0);
+  ASSERT_EQ(run.wait(std::chrono::milliseconds(180'000)), 0) << run.output();
+  std::ifstream in(base / "run/run.json");
+  const auto json = nlohmann::json::parse(in);
+  EXPECT_EQ(json["status"], "ok");
+  ASSERT_EQ(json["restarts"].size(), 1u) << json.dump();
+  EXPECT_EQ(json["restarts"][0]["service"], "registration");
+  EXPECT_EQ(json["restarts"][0]["ended"], "signal 9");
+  EXPECT_EQ(json["restarts"][0]["old_pid"], registration);
+  EXPECT_EQ(json["services"]["registration"], 0);  // the restarted process stopped cleanly at the end
+  EXPECT_GT(json["messages"]["twinslam/v3/registration"], 0);
+  fs::remove_all(base);
 }

@@ -47,3 +47,24 @@ TEST(LaunchFile, RejectsDuplicateNamesAndEmptyLists) {
   EXPECT_THROW(cli::load_launch_file(f), InputError);
   EXPECT_THROW(cli::load_launch_file("/nonexistent.yaml"), InputError);
 }
+
+// Issue 14: `restart: on-failure` (the shipped edge services) and `max_restarts`; a wrong value is named.
+TEST(LaunchFile, RestartPolicyIsReadAndTheEdgeServicesHaveIt) {
+  const auto edge = cli::load_launch_file(fs::path(TWINSLAM_SOURCE_DIR) / "deploy/edge.yaml");
+  for (const auto& s : edge.services) EXPECT_TRUE(s.restart_on_failure) << s.name;
+  const auto drone = cli::load_launch_file(fs::path(TWINSLAM_SOURCE_DIR) / "deploy/drone.yaml");
+  for (const auto& s : drone.services) EXPECT_FALSE(s.restart_on_failure) << s.name;
+  const fs::path f = fs::temp_directory_path() / ("twinslam_launch_restart_" + std::to_string(::getpid()) + ".yaml");
+  std::ofstream(f) << "name: t\nservices:\n  - {name: s, exec: x, restart: on-failure, max_restarts: 2}\n";
+  const auto launch = cli::load_launch_file(f);
+  EXPECT_TRUE(launch.services[0].restart_on_failure);
+  EXPECT_EQ(launch.services[0].max_restarts, 2);
+  std::ofstream(f) << "name: t\nservices:\n  - {name: s, exec: x, restart: always}\n";
+  try {
+    cli::load_launch_file(f);
+    FAIL() << "restart: always was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("services[0].restart"), std::string::npos) << e.what();
+  }
+  fs::remove(f);
+}

@@ -24,6 +24,10 @@ void add_launch_command(CLI::App& app, int& exit_code) {
               << " services (Ctrl-C stops them)" << std::endl;
     const auto event = supervisor.watch();
     const auto results = supervisor.stop_all(std::chrono::milliseconds(static_cast<long>(*grace * 1000)));
+    for (const auto& e : supervisor.restarts()) {
+      std::cerr << "launch: " << e.name << " was restarted at " << e.at_s << " s (restart " << e.attempt << ", pid "
+                << e.old_pid << " -> " << e.new_pid << ")" << std::endl;
+    }
     bool all_ok = true;
     for (const auto& r : results) {
       if (!r.ok()) {

@@ -164,7 +164,10 @@ int run_pipeline(const RunOptions& o) {
       }
     }
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
-    supervisor.start({s, "twinslam-" + s, args, env, {}, false});
+    process::ProcessSpec spec{s, "twinslam-" + s, args, env, {}, false};
+    // The edge services come back after a crash (issue 14): the estimator flies on without them meanwhile.
+    spec.restart_on_failure = s == "tiles" || s == "registration";
+    supervisor.start(spec);
   }
   const auto ready_deadline = std::chrono::steady_clock::now() +
                               std::chrono::milliseconds(static_cast<long>(o.start_timeout_s * 1000));
@@ -219,6 +222,14 @@ int run_pipeline(const RunOptions& o) {
                      {"messages", messages},
                      {"services", svc},
                      {"poses", record.odometry_count()}};
+  nlohmann::json restarts = nlohmann::json::array();
+  for (const auto& e : supervisor.restarts()) {
+    restarts.push_back({{"service", e.name}, {"at_s", e.at_s}, {"attempt", e.attempt},
+                        {"ended", e.exit_code ? "exit code " + std::to_string(*e.exit_code)
+                                              : "signal " + std::to_string(e.signal.value_or(0))},
+                        {"old_pid", e.old_pid}, {"new_pid", e.new_pid}});
+  }
+  run["restarts"] = restarts;
   // When T_WB entered W (null: never): world-frame evaluations start there (twinslam bench).
   const auto aligned = record.first_aligned_stamp_ns(), first = record.first_estimate_stamp_ns();
   run["aligned_from_stamp_ns"] = aligned ? nlohmann::json(*aligned) : nlohmann::json();

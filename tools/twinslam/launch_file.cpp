@@ -52,7 +52,7 @@ LaunchFile load_launch_file(const fs::path& file) {
       const auto s = services[i];
       const std::string ctx = "services[" + std::to_string(i) + "].";
       if (!s.IsMap()) throw InputError(file.string() + ": '" + ctx + "' must be a map");
-      check_keys(file, s, {"name", "exec", "args", "env", "required", "cwd"}, ctx);
+      check_keys(file, s, {"name", "exec", "args", "env", "required", "cwd", "restart", "max_restarts"}, ctx);
       if (!s["name"] || !s["exec"]) throw InputError(file.string() + ": '" + ctx + "' needs 'name' and 'exec'");
       process::ProcessSpec spec;
       spec.name = s["name"].as<std::string>();
@@ -68,6 +68,15 @@ LaunchFile load_launch_file(const fs::path& file) {
       for (const auto& [k, v] : read_env(file, s["env"], ctx + "env")) spec.env[k] = v;
       spec.required = s["required"] ? s["required"].as<bool>() : false;
       spec.cwd = s["cwd"] ? base / expand_env(s["cwd"].as<std::string>()) : base;
+      const std::string restart = s["restart"] ? s["restart"].as<std::string>() : "never";
+      if (restart != "never" && restart != "on-failure") {
+        throw InputError(file.string() + ": '" + ctx + "restart' must be never or on-failure, not '" + restart + "'");
+      }
+      spec.restart_on_failure = restart == "on-failure";
+      if (s["max_restarts"]) spec.max_restarts = s["max_restarts"].as<int>();
+      if (spec.max_restarts < 0 || spec.max_restarts > 1000) {
+        throw InputError(file.string() + ": '" + ctx + "max_restarts' must lie in [0, 1000]");
+      }
       out.services.push_back(std::move(spec));
     }
     return out;

@@ -10,6 +10,8 @@
 //       env: {}                                         # per service, overrides the file's env
 //       required: false                                 # true: its exit ends the launch
 //       cwd: .                                          # relative to the launch file's folder (the default)
+//       restart: on-failure                             # or never (the default): restart after a crash, with
+//       max_restarts: 5                                 #   back-off 0.5 s doubling to 8 s, at most this often
 #include <filesystem>
 #include <string>
 #include <vector>

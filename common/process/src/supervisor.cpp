@@ -40,6 +40,8 @@ fs::path resolve_executable(const std::string& exec) {
   return {};
 }
 
+using Clock = std::chrono::steady_clock;
+
 struct Child {
   ProcessSpec spec;
   pid_t pid = -1;
@@ -47,11 +49,17 @@ struct Child {
   std::string out_buf, err_buf;
   std::unique_ptr<std::ofstream> log;
   ChildResult result;
+  int restarts = 0;                             // restarts of this service before this process
+  bool replaced = false;                        // a restart took its place
+  std::optional<Clock::time_point> restart_at;  // failed, restart due then
+  bool done() const { return result.exit_code || result.signal; }
 };
 
 struct Supervisor::Impl {
   OutputPolicy output;
   std::vector<std::unique_ptr<Child>> children;
+  std::vector<RestartEvent> restarts;
+  Clock::time_point created = Clock::now();
   mutable std::mutex mutex;
   std::atomic<bool> stop_pump{false};
   std::thread pump;
@@ -109,10 +117,13 @@ struct Supervisor::Impl {
     (is_err ? std::cerr : std::cout) << c.spec.name << " | " << line << std::endl;
   }
 
+  // Starts the failed services whose restart is due (ProcessSpec::restart_on_failure).
+  void restart_due();
+
   void reap() {
     std::lock_guard lock(mutex);
     for (auto& c : children) {
-      if (c->result.exit_code || c->result.signal) continue;
+      if (c->done()) continue;
       int status = 0;
       const pid_t r = waitpid(c->pid, &status, WNOHANG);
       if (r != c->pid) continue;
@@ -144,7 +155,10 @@ Supervisor::~Supervisor() {
   impl_->pump.join();
 }
 
-void Supervisor::start(const ProcessSpec& spec) {
+namespace {
+
+// fork + exec of one service with its output piped to the supervisor (the pump reads it).
+std::unique_ptr<Child> spawn(const ProcessSpec& spec, const OutputPolicy& output, bool append_log) {
   const fs::path exe = resolve_executable(spec.exec);
   if (exe.empty()) throw UsageError("service '" + spec.name + "': executable '" + spec.exec + "' not found");
   int out[2], err[2];
@@ -191,11 +205,61 @@ void Supervisor::start(const ProcessSpec& spec) {
   child->err_fd = err[0];
   child->result.name = spec.name;
   child->result.pid = pid;
-  if (!impl_->output.log_dir.empty()) {
-    child->log = std::make_unique<std::ofstream>(impl_->output.log_dir / (spec.name + ".log"));
+  if (!output.log_dir.empty()) {
+    // A restarted service appends to its log: what it wrote before the failure is the evidence.
+    child->log = std::make_unique<std::ofstream>(output.log_dir / (spec.name + ".log"),
+                                                 append_log ? std::ios::app : std::ios::trunc);
   }
+  return child;
+}
+
+// A failure worth a restart: not a clean exit, not exit code 2 (the service refused its input or arguments, which a
+// restart would only refuse again: kExitBadInput of main_guard.hpp), and restarts left.
+bool restartable(const Child& c) {
+  return c.done() && c.spec.restart_on_failure && !c.result.ok() && c.result.exit_code != 2 &&
+         c.restarts < c.spec.max_restarts;
+}
+
+std::string ended(const ChildResult& r) {
+  return r.exit_code ? "exit code " + std::to_string(*r.exit_code) : "signal " + std::to_string(r.signal.value_or(0));
+}
+
+}  // namespace
+
+void Supervisor::start(const ProcessSpec& spec) {
+  auto child = spawn(spec, impl_->output, false);
   std::lock_guard lock(impl_->mutex);
   impl_->children.push_back(std::move(child));
+}
+
+void Supervisor::Impl::restart_due() {
+  // Under the lock: which failed services are due; the fork happens outside it (the pump takes the lock).
+  std::vector<Child*> due;
+  {
+    std::lock_guard lock(mutex);
+    const auto now = Clock::now();
+    for (auto& c : children) {
+      if (c->replaced || !restartable(*c)) continue;
+      if (!c->restart_at) {
+        const double delay_s = c->spec.restart_delay_s * static_cast<double>(1 << std::min(c->restarts, 4));
+        c->restart_at = now + std::chrono::microseconds(static_cast<long long>(delay_s * 1e6));
+        std::cerr << "supervisor: " << c->spec.name << " (pid " << c->pid << ") ended with " << ended(c->result)
+                  << "; restarting in " << delay_s << " s (restart " << c->restarts + 1 << " of at most "
+                  << c->spec.max_restarts << ")" << std::endl;
+      }
+      if (now >= *c->restart_at) due.push_back(c.get());
+    }
+  }
+  for (Child* old : due) {
+    auto child = spawn(old->spec, output, true);
+    child->restarts = old->restarts + 1;
+    RestartEvent e{old->spec.name, std::chrono::duration<double>(Clock::now() - created).count(), child->restarts,
+                   old->result.exit_code, old->result.signal, old->pid, child->pid};
+    std::lock_guard lock(mutex);
+    old->replaced = true;
+    restarts.push_back(e);
+    children.push_back(std::move(child));
+  }
 }
 
 Supervisor::Event Supervisor::watch(std::chrono::milliseconds timeout) {
@@ -203,11 +267,14 @@ Supervisor::Event Supervisor::watch(std::chrono::milliseconds timeout) {
   while (true) {
     if (shutdown_requested()) return Event::Shutdown;
     impl_->reap();
+    impl_->restart_due();
     {
       std::lock_guard lock(impl_->mutex);
       bool all = !impl_->children.empty();
       for (auto& c : impl_->children) {
-        const bool done = c->result.exit_code || c->result.signal;
+        if (c->replaced) continue;
+        // A failed service with restarts left is waiting for its restart: neither failed nor exited yet.
+        const bool done = c->done() && !restartable(*c);
         all = all && done;
         if (done && !c->result.ok()) return Event::ChildFailed;
         if (done && c->spec.required) return Event::RequiredExited;
@@ -223,7 +290,7 @@ std::optional<ChildResult> Supervisor::exited(const std::string& name) {
   impl_->reap();
   std::lock_guard lock(impl_->mutex);
   for (auto& c : impl_->children) {
-    if (c->spec.name == name && (c->result.exit_code || c->result.signal)) return c->result;
+    if (c->spec.name == name && !c->replaced && c->done()) return c->result;
   }
   return std::nullopt;
 }
@@ -264,8 +331,15 @@ std::vector<ChildResult> Supervisor::stop_all(std::chrono::milliseconds grace) {
 std::vector<ChildResult> Supervisor::results() const {
   std::lock_guard lock(impl_->mutex);
   std::vector<ChildResult> out;
-  for (auto& c : impl_->children) out.push_back(c->result);
+  for (auto& c : impl_->children) {
+    if (!c->replaced) out.push_back(c->result);
+  }
   return out;
+}
+
+std::vector<RestartEvent> Supervisor::restarts() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->restarts;
 }
 
 }  // namespace twinslam::process

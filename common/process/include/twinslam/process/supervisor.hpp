@@ -19,6 +19,20 @@ struct ProcessSpec {
   std::map<std::string, std::string> env;    // added to (or overriding) the supervisor's environment
   std::filesystem::path cwd;                 // empty: inherit
   bool required = false;                     // its exit (any code) ends the whole group
+  // Restart after a failure (non-zero exit or a signal), with back-off: restart_delay_s, doubled per restart of the
+  // same service up to 16x, at most max_restarts times; then its failure ends the group as without the policy.
+  bool restart_on_failure = false;
+  int max_restarts = 5;
+  double restart_delay_s = 0.5;              // [s]
+};
+
+// One restart made under ProcessSpec::restart_on_failure.
+struct RestartEvent {
+  std::string name;
+  double at_s = 0.0;                         // when the new process started, since the supervisor was made [s]
+  int attempt = 0;                           // 1 for the first restart of this service
+  std::optional<int> exit_code, signal;      // how the previous process ended
+  int old_pid = 0, new_pid = 0;
 };
 
 struct ChildResult {
@@ -55,7 +69,10 @@ class Supervisor {
   // SIGINT to every running child, SIGKILL to those still running after `grace`. Returns all results.
   std::vector<ChildResult> stop_all(std::chrono::milliseconds grace = std::chrono::milliseconds(5000));
 
+  // One result per service: its latest process.
   std::vector<ChildResult> results() const;
+  // Every restart made so far, in order.
+  std::vector<RestartEvent> restarts() const;
 
  private:
   struct Impl;
