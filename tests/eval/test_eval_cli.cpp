@@ -94,6 +94,28 @@ TEST_F(EvalCli, EmptyFileExitsTwoNamingIt) {
   EXPECT_NE(o.err.find("empty.tum: no poses"), std::string::npos) << o.err;
 }
 
+// A world-frame run (vio-twin) is in L before its alignment is declared: without --align, eval compares only the poses
+// from run.json's aligned_from_stamp_ns on, as bench does, and says so; a broken run.json is named.
+TEST_F(EvalCli, AWorldFrameRunIsEvaluatedFromItsAlignmentOn) {
+  Trajectory est = read_dataset_groundtruth(micro_);
+  const std::int64_t from = est.poses[est.poses.size() / 2].stamp_ns;
+  for (auto& pose : est.poses) pose.T_XB.translation().x() += pose.stamp_ns < from ? 5.0 : 0.1;  // L, then W
+  write_tum(dir_ / "run" / "trajectory.tum", est);
+  std::ofstream(dir_ / "run" / "run.json")
+      << "{\"aligned_from_stamp_ns\": " << from << ", \"aligned_after_s\": 2.5}\n";
+  const Outcome o = run("--gt " + micro_ + " --est " + (dir_ / "run").string() + " --json");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto j = nlohmann::json::parse(o.out);
+  EXPECT_NEAR(j["ate_pos_rmse_m"].get<double>(), 0.1, 1e-9);
+  EXPECT_EQ(j["evaluated_from_stamp_ns"], from);
+  const Outcome table = run("--gt " + micro_ + " --est " + (dir_ / "run").string());
+  EXPECT_NE(table.out.find("evaluated from the run's alignment to W on, 2.5 s"), std::string::npos) << table.out;
+  std::ofstream(dir_ / "run" / "run.json") << "{\"aligned_from_stamp_ns\": ";
+  const Outcome broken = run("--gt " + micro_ + " --est " + (dir_ / "run").string());
+  EXPECT_EQ(broken.code, 2);
+  EXPECT_NE(broken.err.find("run.json: not a run.json"), std::string::npos) << broken.err;
+}
+
 TEST_F(EvalCli, BadAlignmentAndMissingInputExitTwo) {
   EXPECT_EQ(run("--gt " + micro_ + " --est " + (dir_ / "run").string() + " --align se2").code, 2);
   const Outcome o = run("--gt " + micro_ + " --est " + (dir_ / "nothing").string());

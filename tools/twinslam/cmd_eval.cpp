@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "bench_world.hpp"
 #include "commands.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/eval/evaluate.hpp"
@@ -27,7 +28,22 @@ int run_eval(const EvalOptions& o) {
   if (!(o.max_dt_ms > 0.0)) throw UsageError("--max-dt-ms must be positive");
   config.max_dt_ns = static_cast<std::int64_t>(o.max_dt_ms * 1e6);
   const Trajectory gt = read_trajectory_any(o.gt);
-  const Trajectory est = read_trajectory_any(o.est);
+  Trajectory est = read_trajectory_any(o.est);
+  // A run of a world-frame mode is in L until its alignment is declared (run.json aligned_from_stamp_ns): without an
+  // alignment of the estimate, only the poses from then on are in W and comparable with the truth, as in `bench`.
+  std::optional<WorldStart> start;
+  const std::filesystem::path run_json = std::filesystem::path(o.est) / "run.json";
+  if (config.align == eval::AlignMode::None && std::filesystem::is_regular_file(run_json)) {
+    try {
+      start = read_world_start(o.est, gt, est);
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(run_json.string() + ": not a run.json: " + e.what());
+    }
+    if (start) {
+      const auto from = start->aligned_from_stamp_ns;
+      std::erase_if(est.poses, [from](const auto& p) { return p.stamp_ns < from; });
+    }
+  }
   const eval::EvalResult result = eval::evaluate(gt, est, config);
 
   std::vector<std::filesystem::path> pngs;
@@ -36,11 +52,16 @@ int run_eval(const EvalOptions& o) {
     nlohmann::json j = eval::to_json(result);
     j["gt_file"] = gt.source;
     j["est_file"] = est.source;
+    if (start) j["evaluated_from_stamp_ns"] = start->aligned_from_stamp_ns;
     std::cout << j.dump() << std::endl;  // exactly one object, one line: scripts parse stdout
   } else {
     std::cout << "ground truth " << gt.source << " (" << gt.size() << " poses)\n"
-              << "estimate     " << est.source << " (" << est.size() << " poses)\n"
-              << eval::format_table(result);
+              << "estimate     " << est.source << " (" << est.size() << " poses)\n";
+    if (start) {
+      std::cout << "evaluated from the run's alignment to W on, " << start->aligned_after_s
+                << " s after its first estimate (run.json aligned_from_stamp_ns; before that it is in L)\n";
+    }
+    std::cout << eval::format_table(result);
     for (const auto& png : pngs) std::cout << "plot " << png.string() << '\n';
   }
   return 0;
