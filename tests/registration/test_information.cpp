@@ -1,6 +1,8 @@
 // The information's eigen-analysis on ideal geometry: exactly the unobservable directions are found and removed.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include "twinslam/registration/information.hpp"
 
 namespace twinslam::registration {
@@ -26,7 +28,8 @@ Vector6d dir(double wx, double wy, double wz, double vx, double vy, double vz) {
 }
 
 Information analyse(const std::vector<Correspondence>& c) {
-  RegistrationConfig config;  // adaptive
+  RegistrationConfig config;  // adaptive, rigid: eq. (9)'s H (the scale's Schur complement: its own test below)
+  config.estimate_scale = false;
   return compute_information(config, c, 0.1, 0.1);
 }
 
@@ -82,6 +85,25 @@ TEST(RegistrationInformation, HessianIsIndependentOfWherePointsAreExpressedOnlyT
   EXPECT_NEAR(H(3, 3) + H(4, 4) + H(5, 5), static_cast<double>(c.size()), 1e-9);  // unit normals: tr(sum n n^T) = N
   EXPECT_EQ((H - H.transpose()).norm(), 0.0);
   EXPECT_TRUE(compute_information(RegistrationConfig{}, {}, 0.0, 0.0).information.isZero());
+}
+
+// With the scale estimated too (7-DoF ICP), the pose's information is the Schur complement over the log-scale: at
+// most the rigid one (their difference is positive semi-definite, rank one), symmetric, and blind where scale and
+// position cannot be told apart. Seen from 10 m above one ground plane, a scale about the keyframe moves the plane
+// exactly like a vertical translation: t_z is lost. A second plane at another distance (a facade) gives it back.
+TEST(RegistrationInformation, EstimatingTheScaleCostsTheInformationItCouplesWith) {
+  std::vector<Correspondence> ground;
+  plane(ground, {-10, -10, -10}, {20, 0, 0}, {0, 20, 0});
+  const Matrix6d rigid = registration_hessian(ground), scaled = registration_hessian(ground, false, true);
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> diff(rigid - scaled);
+  EXPECT_GT(diff.eigenvalues().minCoeff(), -1e-9 * rigid.norm());
+  EXPECT_LT(diff.eigenvalues()(4), 1e-9 * rigid.norm());  // rank one
+  EXPECT_EQ((scaled - scaled.transpose()).norm(), 0.0);
+  EXPECT_GT(rigid(5, 5), 0.5 * static_cast<double>(ground.size()));
+  EXPECT_LT(scaled(5, 5), 1e-9 * rigid(5, 5));  // t_z: gone
+  std::vector<Correspondence> two = ground;
+  plane(two, {-10, 5, -10}, {20, 0, 0}, {0, 0, 20});  // a facade 5 m away
+  EXPECT_GT(registration_hessian(two, false, true)(5, 5), 0.1 * static_cast<double>(ground.size()));
 }
 
 }  // namespace

@@ -56,6 +56,29 @@ TEST(Registration, RecoversAKnownOffsetThroughNoiseAndOutliers) {
   EXPECT_GT(r.iterations, 1);
 }
 
+// The VIO cloud carries the window's scale error: landmarks at s x their true distance from the keyframe. Rigid ICP
+// turns that into a position error of the keyframe; with estimate_scale the 7-DoF fit finds s, the keyframe's
+// correction is right.
+TEST(Registration, EstimatingTheScaleRemovesTheKeyframeBiasOfAScaledCloud) {
+  const Scene& s = scene();
+  const double scale = 1.03;
+  std::vector<Eigen::Vector3d> scaled = s.landmarks(4000, 0.0);
+  for (auto& p : scaled) p = kBody + scale * (p - kBody);
+  const SourceInput in = test::make_source(scaled, s.error, kBody);
+  const Eigen::Vector3d p_WB_guess = s.error * kBody;
+  RegistrationConfig rigid = fine();
+  rigid.estimate_scale = false;
+  const RegistrationResult r_rigid = register_cloud(rigid, s.index, in);
+  RegistrationConfig with_scale = fine();
+  with_scale.estimate_scale = true;
+  const RegistrationResult r_scale = register_cloud(with_scale, s.index, in);
+  ASSERT_TRUE(r_scale.accepted()) << r_scale.reason;
+  const double rigid_error_m = (r_rigid.correction_W * p_WB_guess - kBody).norm();
+  const double scale_error_m = (r_scale.correction_W * p_WB_guess - kBody).norm();
+  EXPECT_GT(rigid_error_m, 0.15);  // 3 % of the 15 m to the ground
+  EXPECT_LT(scale_error_m, 0.02);
+}
+
 TEST(Registration, IsDeterministic) {
   const Scene& s = scene();
   const SourceInput in = test::make_source(s.landmarks(800, 0.2), s.error, kBody);
@@ -143,11 +166,15 @@ TEST(Registration, EveryRejectionReasonIsReachable) {
   rmse.max_rmse_m = 0.02;  // 0.1 m noise
   EXPECT_EQ(status_of(rmse, in), RegistrationStatus::kRmseTooLarge);
   std::vector<test::Rect> ground{test::city_surfaces().front()};  // one plane: 3 unobservable directions
-  EXPECT_EQ(
-      status_of(c, test::make_source(test::sample_noisy(ground, 800, 0.05, 4), Eigen::Isometry3d::Identity(), kBody),
-                {}, &why),
-      RegistrationStatus::kDegenerate);
+  RegistrationConfig rigid = c;
+  rigid.estimate_scale = false;
+  const SourceInput plane_only =
+      test::make_source(test::sample_noisy(ground, 800, 0.05, 4), Eigen::Isometry3d::Identity(), kBody);
+  EXPECT_EQ(status_of(rigid, plane_only, {}, &why), RegistrationStatus::kDegenerate);
   EXPECT_EQ(why, "3 poorly observed directions > max_zero_directions 2");
+  // With the scale estimated too, the shift along the normal joins them (a scale about the keyframe moves the plane
+  // the same way): ICP does not settle, and the cloud is refused all the same.
+  EXPECT_NE(status_of(c, plane_only, {}, &why), RegistrationStatus::kAccepted);
   // The estimator says its pose is good to 1 cm / 0.01 rad: a 1 m correction contradicts it.
   Matrix6d tight = Matrix6d::Identity() * 1e-4;
   EXPECT_EQ(status_of(c, in, tight), RegistrationStatus::kCorrectionTooLarge);

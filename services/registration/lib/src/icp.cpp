@@ -17,7 +17,11 @@ constexpr double kMadToSigma = 1.4826;  // sigma of a Gaussian from its median a
 struct Pose {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  double s = 1.0;  // scale about the pivot (estimate_scale)
 };
+
+using Vector7d = Eigen::Matrix<double, 7, 1>;
+using Matrix7d = Eigen::Matrix<double, 7, 7>;
 
 // The nearest twin point of every source point within the gate, in source order. The searches are independent
 // (in parallel on `threads`); the list is then compacted in order, so it does not depend on the thread count.
@@ -30,7 +34,7 @@ std::vector<Correspondence> associate(const RegistrationConfig& config, const Tw
 #pragma omp parallel for num_threads(config.threads) schedule(static) if (config.threads > 1)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    const Eigen::Vector3d a = pose.R * (p_W[k] - c) + pose.t;
+    const Eigen::Vector3d a = pose.s * (pose.R * (p_W[k] - c)) + pose.t;
     const auto m = index.nearest(c + a, gate);
     if (!m) continue;
     const Eigen::Vector3d b = m->p_W - c;
@@ -62,17 +66,20 @@ double robust_sigma(const std::vector<Correspondence>& corr, bool plane) {
   return kMadToSigma * median(std::move(v));
 }
 
-// One Gauss-Newton step x = (w, v) (rotation, translation) of the Geman-McClure-weighted eq. (2). The normal
-// equations are solved in units where rotation is scaled by the cloud's radius, so that a pseudo-inverse can leave
-// out unobservable directions (a single plane) instead of taking a huge step along them.
-Vector6d gauss_newton_step(const std::vector<Correspondence>& corr, double kernel) {
-  Matrix6d JtJ = Matrix6d::Zero();
-  Vector6d Jtr = Vector6d::Zero();
+// One Gauss-Newton step x = (w, v, sigma) (rotation, translation, log-scale) of the Geman-McClure-weighted eq. (2),
+// for the update a' = e^sigma Exp(w) a + v; sigma stays 0 unless `with_scale`. The normal equations are solved in units
+// where rotation and scale are scaled by the cloud's radius, so that a pseudo-inverse can leave out unobservable
+// directions (a single plane; the scale column when not estimated) instead of taking a huge step along them. A single
+// plane seen from afar leaves scale and the shift along its normal nearly inseparable (a scale about the keyframe
+// moves it like a shift): ICP then does not settle within its iterations and the result is refused (not converged).
+Vector7d gauss_newton_step(const std::vector<Correspondence>& corr, double kernel, bool with_scale) {
+  Matrix7d JtJ = Matrix7d::Zero();
+  Vector7d Jtr = Vector7d::Zero();
   double radius_sq = 0.0;
   const double k2 = kernel * kernel;
   for (const Correspondence& k : corr) {
-    Vector6d J;
-    J << k.a.cross(k.n), k.n;
+    Vector7d J;
+    J << k.a.cross(k.n), k.n, with_scale ? k.n.dot(k.a) : 0.0;
     const double d = k2 + k.residual * k.residual;
     const double w = k.weight * k2 * k2 / (d * d);  // Geman-McClure: rho'(r) / r, 1 at r = 0; times w_j
     JtJ.noalias() += w * J * J.transpose();
@@ -80,26 +87,27 @@ Vector6d gauss_newton_step(const std::vector<Correspondence>& corr, double kerne
     radius_sq += k.a.squaredNorm();
   }
   const double L = std::max(1.0, std::sqrt(radius_sq / static_cast<double>(corr.size())));
-  Vector6d s;
-  s << Eigen::Vector3d::Constant(1.0 / L), Eigen::Vector3d::Ones();
-  const Matrix6d Hs = s.asDiagonal() * JtJ * s.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(Hs);
+  Vector7d s;
+  s << Eigen::Vector3d::Constant(1.0 / L), Eigen::Vector3d::Ones(), 1.0 / L;
+  const Matrix7d Hs = s.asDiagonal() * JtJ * s.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Matrix7d> eig(Hs);
   const double floor = 1e-9 * std::max(eig.eigenvalues().maxCoeff(), 1e-300);
-  Vector6d inv = eig.eigenvalues();
-  for (int i = 0; i < 6; ++i) inv(i) = inv(i) > floor ? 1.0 / inv(i) : 0.0;
-  const Vector6d xs = -eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() * (s.asDiagonal() * Jtr);
+  Vector7d inv = eig.eigenvalues();
+  for (int i = 0; i < 7; ++i) inv(i) = inv(i) > floor ? 1.0 / inv(i) : 0.0;
+  const Vector7d xs = -eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() * (s.asDiagonal() * Jtr);
   return s.asDiagonal() * xs;
 }
 
-// The correspondences of the last iteration carried through its update x (rotation, translation): a' = Exp(w) a + v,
+// The correspondences of the last iteration carried through its update x: a' = e^sigma Exp(w) a + v,
 // the same twin points. Used once ICP has converged: the update is below 0.1 mm, so a fresh nearest-neighbour search
 // would find the same points, and skipping it saves one association of the ~6 per registration.
-std::vector<Correspondence> carry(std::vector<Correspondence> corr, const Vector6d& x, double gate) {
+std::vector<Correspondence> carry(std::vector<Correspondence> corr, const Vector7d& x, double gate) {
   const Eigen::Matrix3d dR = geometry::so3_exp(x.head<3>());
+  const double ds = std::exp(x(6));
   std::vector<Correspondence> out;
   out.reserve(corr.size());
   for (Correspondence& k : corr) {
-    k.a = dR * k.a + x.tail<3>();
+    k.a = ds * (dR * k.a) + x.segment<3>(3);
     k.distance = (k.a - k.b).norm();
     k.residual = k.n.dot(k.a - k.b);
     if (k.distance <= gate) out.push_back(k);
@@ -121,6 +129,7 @@ void finish(const RegistrationConfig& config, const std::vector<Correspondence>&
   out.rmse_m = out.inliers.empty() ? 0.0 : std::sqrt(sum_sq / static_cast<double>(out.inliers.size()));
   out.dR = pose.R;
   out.dp = pose.t;
+  out.scale = pose.s;
   out.correction_W = correction_about(pose.R, pose.t, out.pivot_W);
 }
 
@@ -149,18 +158,20 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
   pose.R = dR0;
   double gate = config.initial_threshold_m;
   const double conv_rot = config.convergence_rotation_deg * M_PI / 180.0;
-  const auto small = [&](const Vector6d& v, double scale) {
-    return v.head<3>().norm() < scale * conv_rot && v.tail<3>().norm() < scale * config.convergence_translation_m;
+  // The log-scale converges with the rotation's threshold (1e-3 deg = 1.7e-5: 1.7 mm at 100 m).
+  const auto small = [&](const Vector7d& v, double scale) {
+    return v.head<3>().norm() < scale * conv_rot && v.segment<3>(3).norm() < scale * config.convergence_translation_m &&
+           std::abs(v(6)) < scale * conv_rot;
   };
   std::vector<Correspondence> corr;
-  Vector6d x = Vector6d::Zero(), x_prev = Vector6d::Constant(std::numeric_limits<double>::infinity());
+  Vector7d x = Vector7d::Zero(), x_prev = Vector7d::Constant(std::numeric_limits<double>::infinity());
   for (int it = 1; it <= config.max_iterations; ++it) {
     corr = associate(config, index, p_W, cov_W, pivot_W, pose, gate);
     if (corr.size() < 6) break;  // nothing to solve for: not converged
     // KISS-ICP's adaptive threshold: the gate follows 3 sigma of the distances (never growing, never below the
     // floor), and the kernel scale is that sigma, so far correspondences lose weight smoothly as alignment improves.
     const double sigma = std::max(robust_sigma(corr, false), config.min_threshold_m / config.threshold_sigmas);
-    x = gauss_newton_step(corr, sigma);
+    x = gauss_newton_step(corr, sigma, config.estimate_scale);
     // Two correspondence sets that each pull the pose to the other's side make ICP alternate between two poses for
     // ever (bench_registration: steps of +-1 mm until the iteration limit, 1 % of its keyframes, the p99 time). When
     // this step undoes the last one and both are small (< 100 x the convergence thresholds: 1 cm, 0.1 deg), the
@@ -168,8 +179,10 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
     const bool cycle = small(x + x_prev, 1.0) && small(x, 100.0);
     if (cycle) x *= 0.5;
     const Eigen::Matrix3d dR = geometry::so3_exp(x.head<3>());
+    const double ds = std::exp(x(6));
     pose.R = geometry::so3_normalize(dR * pose.R);
-    pose.t = dR * pose.t + x.tail<3>();
+    pose.t = ds * (dR * pose.t) + x.segment<3>(3);
+    pose.s *= ds;
     gate = std::clamp(config.threshold_sigmas * sigma, config.min_threshold_m, gate);
     out.iterations = it;
     if (cycle || small(x, 1.0)) {

@@ -34,13 +34,21 @@ Matrix6d analyse(const RegistrationConfig& config, double n, Information& info) 
 
 }  // namespace
 
-Matrix6d registration_hessian(const std::vector<Correspondence>& inliers, bool weighted) {
+Matrix6d registration_hessian(const std::vector<Correspondence>& inliers, bool weighted, bool marginalize_scale) {
   Matrix6d H = Matrix6d::Zero();
+  Vector6d h_scale = Vector6d::Zero();  // cross terms with the log-scale column n . a
+  double h_ss = 0.0;
   for (const Correspondence& k : inliers) {
     Vector6d A;  // eq. (9) has A_j = -[(a x n)^T, n^T]; the sign cancels in A^T A
     A << k.a.cross(k.n), k.n;
-    H.noalias() += (weighted ? k.weight : 1.0) * A * A.transpose();
+    const double w = weighted ? k.weight : 1.0;
+    H.noalias() += w * A * A.transpose();
+    const double scale_column = k.n.dot(k.a);
+    h_scale.noalias() += w * scale_column * A;
+    h_ss += w * scale_column * scale_column;
   }
+  // The pose's information with the scale unknown: the Schur complement of the 7 x 7 Hessian over the scale.
+  if (marginalize_scale && h_ss > 0.0) H -= h_scale * h_scale.transpose() / h_ss;
   return 0.5 * (H + H.transpose());  // Eigen's product kernel is not bit-symmetric; the factor must be
 }
 
@@ -48,8 +56,8 @@ Information compute_information(const RegistrationConfig& config, const std::vec
                                 double rmse_m, double robust_sigma_m) {
   Information info;
   if (inliers.empty()) return info;
-  info.H = registration_hessian(inliers);
-  info.H_weighted = registration_hessian(inliers, true);
+  info.H = registration_hessian(inliers, false, config.estimate_scale);
+  info.H_weighted = registration_hessian(inliers, true, config.estimate_scale);
   double radius_sq = 0.0, weight = 0.0;
   for (const Correspondence& k : inliers) {
     radius_sq += k.a.squaredNorm();

@@ -31,7 +31,7 @@ T read(const std::string& file, const std::string& key, const YAML::Node& node, 
 }
 
 // One row per YAML key: the parser and the "known keys" message come from the same table, so they cannot disagree.
-using Field = std::variant<double C::*, int C::*, WeightMode C::*>;
+using Field = std::variant<double C::*, int C::*, WeightMode C::*, bool C::*>;
 struct Key {
   const char* name;
   Field field;
@@ -69,6 +69,7 @@ const std::vector<Key>& keys() {
       {"max_mahalanobis_sq", &C::max_mahalanobis_sq},
       {"mahalanobis_floor_m", &C::mahalanobis_floor_m},
       {"mahalanobis_floor_deg", &C::mahalanobis_floor_deg},
+      {"estimate_scale", &C::estimate_scale},
       {"persistent_corrections", &C::persistent_corrections},
       {"persistent_tolerance_m", &C::persistent_tolerance_m},
       {"persistent_tolerance_deg", &C::persistent_tolerance_deg},
@@ -95,6 +96,7 @@ void set(C& c, const Key& k, const std::string& file, const YAML::Node& node) {
   if (auto d = std::get_if<double C::*>(&k.field)) c.*(*d) = read<double>(file, k.name, node, "a number");
   if (auto i = std::get_if<int C::*>(&k.field)) c.*(*i) = read<int>(file, k.name, node, "an integer");
   if (auto m = std::get_if<WeightMode C::*>(&k.field)) c.*(*m) = parse_mode(file, k.name, node);
+  if (auto b = std::get_if<bool C::*>(&k.field)) c.*(*b) = read<bool>(file, k.name, node, "true or false");
 }
 
 std::string known_keys() {

@@ -32,7 +32,7 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 struct Correspondence {
-  Eigen::Vector3d a;      // source point with the current correction, relative to the pivot: dR a_j + dp [m]
+  Eigen::Vector3d a;      // source point with the current correction, relative to the pivot: s dR a_j + dp [m]
   Eigen::Vector3d b;      // twin point relative to the pivot [m]
   Eigen::Vector3d n;      // twin normal (unit)
   double residual = 0.0;  // n . (a - b): the point-to-plane residual of eq. (2) [m]
@@ -46,6 +46,7 @@ double residual_weight(const RegistrationConfig& config, const Eigen::Matrix3d& 
 struct IcpResult {
   Eigen::Matrix3d dR = Eigen::Matrix3d::Identity();                // rotation about the pivot (see above)
   Eigen::Vector3d dp = Eigen::Vector3d::Zero();                    // translation of the pivot [m, W]
+  double scale = 1.0;  // of the cloud about the pivot (RegistrationConfig::estimate_scale; else 1), not in correction_W
   Eigen::Isometry3d correction_W = Eigen::Isometry3d::Identity();  // [dR | c + dp - dR c], dT of eq. (3)
   Eigen::Vector3d pivot_W = Eigen::Vector3d::Zero();               // c [m, W]
   int iterations = 0;

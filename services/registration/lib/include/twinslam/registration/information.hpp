@@ -39,7 +39,9 @@ struct Information {
 };
 
 // eq. (8)-(9): sum of A_j^T A_j over the correspondences; `weighted`: of w_j A_j^T A_j.
-Matrix6d registration_hessian(const std::vector<Correspondence>& inliers, bool weighted = false);
+// marginalize_scale: with a 7-DoF ICP (RegistrationConfig::estimate_scale), the Schur complement over the log-scale.
+Matrix6d registration_hessian(const std::vector<Correspondence>& inliers, bool weighted = false,
+                              bool marginalize_scale = false);
 
 // Weights `inliers` (at the converged correction) as config.weights says:
 //   paper:    beta / trace(H) * exp(-rmse^2 / 2) * H                                       (eq. 10 as written)
