@@ -225,8 +225,7 @@ int run_pipeline(const RunOptions& o) {
   nlohmann::json restarts = nlohmann::json::array();
   for (const auto& e : supervisor.restarts()) {
     restarts.push_back({{"service", e.name}, {"at_s", e.at_s}, {"attempt", e.attempt},
-                        {"ended", e.exit_code ? "exit code " + std::to_string(*e.exit_code)
-                                              : "signal " + std::to_string(e.signal.value_or(0))},
+                        {"ended", process::describe_end(e.exit_code, e.signal)},
                         {"old_pid", e.old_pid}, {"new_pid", e.new_pid}});
   }
   run["restarts"] = restarts;

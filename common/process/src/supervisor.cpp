@@ -22,6 +22,10 @@ extern char** environ;
 namespace twinslam::process {
 namespace fs = std::filesystem;
 
+std::string describe_end(const std::optional<int>& exit_code, const std::optional<int>& signal) {
+  return exit_code ? "exit code " + std::to_string(*exit_code) : "signal " + std::to_string(signal.value_or(0));
+}
+
 fs::path resolve_executable(const std::string& exec) {
   if (exec.find('/') != std::string::npos) return fs::exists(exec) ? fs::absolute(exec) : fs::path();
   std::error_code ec;
@@ -220,10 +224,6 @@ bool restartable(const Child& c) {
          c.restarts < c.spec.max_restarts;
 }
 
-std::string ended(const ChildResult& r) {
-  return r.exit_code ? "exit code " + std::to_string(*r.exit_code) : "signal " + std::to_string(r.signal.value_or(0));
-}
-
 }  // namespace
 
 void Supervisor::start(const ProcessSpec& spec) {
@@ -243,7 +243,7 @@ void Supervisor::Impl::restart_due() {
       if (!c->restart_at) {
         const double delay_s = c->spec.restart_delay_s * static_cast<double>(1 << std::min(c->restarts, 4));
         c->restart_at = now + std::chrono::microseconds(static_cast<long long>(delay_s * 1e6));
-        std::cerr << "supervisor: " << c->spec.name << " (pid " << c->pid << ") ended with " << ended(c->result)
+        std::cerr << "supervisor: " << c->spec.name << " (pid " << c->pid << ") ended with " << describe_end(c->result.exit_code, c->result.signal)
                   << "; restarting in " << delay_s << " s (restart " << c->restarts + 1 << " of at most "
                   << c->spec.max_restarts << ")" << std::endl;
       }

@@ -17,14 +17,14 @@
 namespace twinslam::estimator {
 namespace {
 
-// Reprojection error [px] of one reprojection term after the solve, and whether the point is in front of the camera.
-std::pair<double, bool> reprojection_error_px(WindowState& s, const ResidualTerm& t) {
+// Reprojection error [px] of one reprojection term after the solve, and whether the point is in front of the camera,
+// with the camera rotation R_BC the window estimates now (camera_T_BC(s), computed once per solve by the caller).
+std::pair<double, bool> reprojection_error_px(WindowState& s, const ResidualTerm& t, const Eigen::Matrix3d& R_BC) {
   const WindowLandmark& lm = s.landmarks.at(t.landmark);
   const WindowFrame* anchor = find_frame(s, lm.lm.anchor_keyframe);
   const WindowFrame* frame = find_frame(s, t.frame);
   const auto* factor = dynamic_cast<const ReprojectionFactor*>(t.cost.get());
   if (factor == nullptr) factor = &static_cast<const CameraRotationFactor&>(*t.cost).reprojection();
-  const Eigen::Matrix3d R_BC = camera_T_BC(s).linear();
   return {factor->angular_error(anchor->pose.data(), frame->pose.data(), lm.rho, &R_BC) * s.config.focal_px,
           factor->in_front(anchor->pose.data(), frame->pose.data(), lm.rho, &R_BC)};
 }
@@ -139,9 +139,10 @@ SolveSummary solve_window(WindowState& s) {
   SolveSummary out;
   std::vector<double> errors;
   std::map<std::int64_t, std::pair<double, int>> per_landmark;  // sum of errors, count
+  const Eigen::Matrix3d R_BC = camera_T_BC(s).linear();
   for (const auto& t : terms) {
     if (t.kind != TermKind::kReprojection) continue;
-    const auto [err, in_front] = reprojection_error_px(s, t);
+    const auto [err, in_front] = reprojection_error_px(s, t, R_BC);
     errors.push_back(err);
     if (err > c.outlier_threshold_px || !in_front) {
       find_frame(s, t.frame)->bearings.erase(t.landmark);

@@ -79,6 +79,9 @@ class Supervisor {
   std::unique_ptr<Impl> impl_;
 };
 
+// How a process ended, for people: "exit code N" or "signal N".
+std::string describe_end(const std::optional<int>& exit_code, const std::optional<int>& signal);
+
 // Finds `exec` as Supervisor::start would; empty if not found.
 std::filesystem::path resolve_executable(const std::string& exec);
 

@@ -40,10 +40,11 @@ struct RegistrationConfig {
   double threshold_sigmas = 3.0;            // gate = this * robust sigma of the correspondence distances (KISS-ICP: 3)
   double convergence_translation_m = 1e-4;  // converged when the update's translation is below this [m] ...
   double convergence_rotation_deg = 1e-3;   // ... and its rotation below this [deg]
-  // Also estimate a scale of the cloud about the keyframe (7-DoF ICP), reported and dropped: the VIO cloud carries the
-  // window's scale error, and rigid ICP turns it into a position error of the keyframe of (s - 1) x its distance to
-  // the surfaces (city-survey: VIO scale +3 % / -3..-7 %, landmarks 70 m below -> registrations +1.4 / -1.6 m in
-  // height). The information is then the Schur complement over the scale (less where it couples with position).
+  // Also estimate a scale of the cloud about the keyframe (7-DoF ICP; IcpResult::scale), then dropped: the VIO cloud
+  // carries the window's scale error, and rigid ICP turns it into a position error of the keyframe of (s - 1) x its
+  // distance to the surfaces (city-survey: VIO scale +3 % / -3..-7 %, landmarks 70 m below -> registrations
+  // +1.4 / -1.6 m in height). The information is then the Schur complement over the scale (less where it couples with
+  // position).
   bool estimate_scale = true;
   // Heading search (yaw_search.hpp): when the estimator's heading sigma is above yaw_search_min_sigma_deg, ICP also
   // starts from headings rotated about the body by multiples of yaw_search_step_deg within +-min(3 sigma,
