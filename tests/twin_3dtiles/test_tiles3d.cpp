@@ -228,10 +228,12 @@ TEST(Tiles3d, MalformedTilesetThrowsWithTheReason) {
     expect_input_error([&] { load_3dtiles(tmp.path("t.json"), options(), nullptr); }, {"t.json", reason});
   };
   expect(R"({"asset":{"version":"1.0"},"root":{)", "malformed");
-  expect(R"({"root":{}})", "asset.version");
+  expect(R"({"root":{}})", "lacks asset");
+  expect(R"({"asset":{"version":1},"root":{}})", "asset.version is not a string");
   expect(R"({"asset":{"version":"7.0"},"root":{}})", "'7.0' unsupported");
   expect(R"({"asset":{"version":"1.0"}})", "root");
-  expect(tileset(R"({"boundingVolume":{"sphere":[0,0,0,1]}})"), "geometricError");
+  expect(R"({"asset":{"version":"1.0"},"root":{"boundingVolume":{"sphere":[0,0,0,1]}}})", "geometricError missing");
+  expect(tileset(R"({"geometricError":-1,"boundingVolume":{"sphere":[0,0,0,1]}})"), "geometricError is not a number");
   expect(tileset(R"({"geometricError":1})"), "boundingVolume missing");
   expect(tileset(R"({"geometricError":1,"boundingVolume":{"region":[0,0,7,1,0,1]}})"), "region longitude");
   expect(tileset(R"({"geometricError":1,"boundingVolume":{"box":[0,0,0]}})"), "box is not 12");
@@ -306,6 +308,8 @@ TEST(Tiles3d, GltfContentIsTurnedZUpAndPlacedWithCesiumRtc) {
   LoadReport report;
   const Mesh m = load_3dtiles(tmp.path("tileset.json"), options(), &report);
   EXPECT_EQ(report.parts_loaded, 2u);
+  ASSERT_EQ(report.warnings.size(), 1u);  // CESIUM_RTC is deprecated: accepted as CesiumJS does, with a warning
+  EXPECT_NE(report.warnings[0].find("rtc.gltf: glTF CESIUM_RTC extension (deprecated)"), std::string::npos);
   ASSERT_EQ(m.num_vertices(), 6u);
   const Eigen::Vector3d expected[3] = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
   for (int i = 0; i < 3; ++i) {

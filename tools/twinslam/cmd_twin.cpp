@@ -25,6 +25,7 @@ struct BuildOptions {
   std::optional<std::string> crs;
   twin::StoreConfig store;
   double max_geometric_error_m = 0.0;
+  bool strict = false;
 };
 
 struct InfoOptions {
@@ -47,6 +48,7 @@ int run_build(const BuildOptions& o) {
   load.origin = origin;
   load.crs = o.crs;
   load.max_geometric_error_m = o.max_geometric_error_m;
+  load.strict = o.strict;
   twin::Mesh mesh_W;
   bool have_points = false, have_triangles = false;
   for (const std::string& src : o.sources) {
@@ -59,9 +61,11 @@ int run_build(const BuildOptions& o) {
     }
     have_points |= points;
     have_triangles |= !points && !part.empty();
-    std::printf("source %s: %zu triangles, %zu %s, %zu parts, %zu rejected\n", src.c_str(), part.num_triangles(),
-                part.num_vertices(), points ? "points" : "vertices", report.parts_loaded, report.rejected.size());
+    std::printf("source %s: %zu triangles, %zu %s, %zu parts, %zu rejected, %zu warnings\n", src.c_str(),
+                part.num_triangles(), part.num_vertices(), points ? "points" : "vertices", report.parts_loaded,
+                report.rejected.size(), report.warnings.size());
     for (const std::string& why : report.rejected) std::printf("  rejected %s\n", why.c_str());
+    for (const std::string& quirk : report.warnings) std::printf("  warning %s\n", quirk.c_str());
     mesh_W.append(part);
   }
   if (mesh_W.empty()) throw InputError(where(o.sources.front(), 0, "the sources hold no geometry"));
@@ -134,6 +138,9 @@ void add_twin_command(CLI::App& app, int& exit_code) {
                    "3D Tiles: use the finest level whose geometricError is >= M (0 = leaves) [m]")
       ->type_name("M")
       ->capture_default_str();
+  build->add_flag("--strict", b->strict,
+                  "3D Tiles: refuse what CesiumJS accepts with a warning (missing geometricError or asset.version, "
+                  "content.url, legacy or unpadded b3dm, CESIUM_RTC)");
   build->callback([b, &exit_code] { exit_code = run_build(*b); });
 
   auto i = std::make_shared<InfoOptions>();

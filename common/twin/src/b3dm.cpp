@@ -105,6 +105,7 @@ B3dmContent parse_checked(const std::uint8_t* d, std::size_t size, const std::st
 
   B3dmContent out;
   out.header_bytes = l.header;
+  out.unpadded = byte_length % 8 != 0;
   std::size_t batch_length = l.legacy_batch_length.value_or(0);
   const nlohmann::json fj = detail::parse_table_json(ft, name, "feature table");
   if (!legacy) {

@@ -199,6 +199,7 @@ GltfContent load_gltf_content(const std::uint8_t* data, std::size_t size, const 
   Eigen::Matrix4d T_rtc = Eigen::Matrix4d::Identity();
   T_rtc.topRightCorner<3, 1>() = rtc;
   for (int root : root_nodes(model, name)) walker.visit(root, T_rtc);
+  walker.out.cesium_rtc = model.extensions.count("CESIUM_RTC") > 0;
   return std::move(walker.out);
 }
 

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "cmpt.hpp"
+#include "tiles3d_quirks.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/twin/gltf.hpp"
 
@@ -38,6 +39,7 @@ struct ContentLoader {
   std::vector<std::uint32_t>* batch_id;
   BatchTable* batch_table;
   LoadReport* report;
+  bool strict;
   Mesh out;
 
   // One tile's bytes (the file, or an inner tile of a composite, named `name`) appended to `out`.
@@ -46,6 +48,8 @@ struct ContentLoader {
     Eigen::Vector3d rtc = Eigen::Vector3d::Zero();
     if (magic_is(d, n, "b3dm")) {
       B3dmContent b3dm = parse_b3dm(d, n, name, B3dmCheck::kLenient);
+      if (b3dm.header_bytes != 28) detail::note_quirk(detail::Quirk::kLegacyB3dmHeader, name, "header", strict, report);
+      if (b3dm.unpadded) detail::note_quirk(detail::Quirk::kUnpaddedB3dm, name, "byteLength", strict, report);
       model = std::move(b3dm.gltf);
       if (b3dm.rtc_center) rtc = *b3dm.rtc_center;
       if (batch_table != nullptr) *batch_table = std::move(b3dm.batch_table);
@@ -70,6 +74,7 @@ struct ContentLoader {
     } else {
       throw InputError(where(name, 0, "unknown tile content (no b3dm / glTF / cmpt magic)"));
     }
+    if (model.cesium_rtc) detail::note_quirk(detail::Quirk::kCesiumRtc, name, "glTF extensions", strict, report);
     place(model.mesh, rtc, ref.T_ECEF_tile, enu);
     const std::size_t base = out.num_vertices();
     out.append(model.mesh);
@@ -86,11 +91,11 @@ struct ContentLoader {
 }  // namespace
 
 Mesh load_tile_content(const TileContentRef& content, const EnuFrame& enu, std::vector<std::uint32_t>* batch_id,
-                       BatchTable* batch_table, LoadReport* report) {
+                       BatchTable* batch_table, LoadReport* report, bool strict) {
   const std::vector<std::uint8_t> bytes = read_binary_file(content.path);
   if (batch_id != nullptr) batch_id->clear();
   if (batch_table != nullptr) *batch_table = {};
-  ContentLoader loader{content, enu, batch_id, batch_table, report, {}};
+  ContentLoader loader{content, enu, batch_id, batch_table, report, strict, {}};
   loader.load(bytes.data(), bytes.size(), content.path, 0);
   if (batch_id != nullptr && std::all_of(batch_id->begin(), batch_id->end(), [](std::uint32_t id) {
         return id == std::numeric_limits<std::uint32_t>::max();
@@ -102,12 +107,12 @@ Mesh load_tile_content(const TileContentRef& content, const EnuFrame& enu, std::
 
 Mesh load_3dtiles(const std::string& tileset_json, const LoadOptions& options, LoadReport* report) {
   const std::vector<TileContentRef> contents =
-      select_3dtiles_contents(tileset_json, options.max_geometric_error_m, report);
+      select_3dtiles_contents(tileset_json, options.max_geometric_error_m, report, options.strict);
   const EnuFrame enu(options.origin);
   Mesh mesh_W;
   for (const TileContentRef& c : contents) {
     try {
-      mesh_W.append(load_tile_content(c, enu, nullptr, nullptr, report));
+      mesh_W.append(load_tile_content(c, enu, nullptr, nullptr, report, options.strict));
       if (report != nullptr) ++report->parts_loaded;
     } catch (const InputError& e) {
       if (report != nullptr) report->rejected.emplace_back(e.what());

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tiles3d_quirks.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/twin/tiles3d.hpp"
 
@@ -91,12 +92,43 @@ bool ends_with_json(const std::string& path) {
 
 struct Selector {
   double tau;
+  bool strict;
   LoadReport* report;
   std::vector<TileContentRef> out;
   std::vector<std::string> chain;  // tileset files being walked (external tileset cycles)
 
   void reject(const std::string& line) {
     if (report != nullptr) report->rejected.push_back(line);
+  }
+
+  void quirk(detail::Quirk q, const std::string& file, const std::string& at) {
+    detail::note_quirk(q, file, at, strict, report);
+  }
+
+  // asset.version: 1.0 / 1.1; a missing one and pre-1.0 "0.0" are quirks read as 1.0.
+  void check_version(const json& j, const std::string& path) {
+    if (!j.contains("asset") || !j["asset"].is_object()) throw InputError(where(path, 0, "tileset lacks asset"));
+    const json& asset = j["asset"];
+    if (!asset.contains("version")) return quirk(detail::Quirk::kNoAssetVersion, path, "asset");
+    if (!asset["version"].is_string()) throw InputError(where(path, 0, "tileset asset.version is not a string"));
+    const std::string version = asset["version"];
+    if (version == "0.0") return quirk(detail::Quirk::kPreReleaseVersion, path, "asset");
+    if (version != "1.0" && version != "1.1") {
+      throw InputError(where(path, 0, "tileset asset.version '" + version + "' unsupported (1.0, 1.1)"));
+    }
+  }
+
+  // The tile's geometricError; a missing one is the parent's (CesiumJS's fallback), the root's the tileset's.
+  double geometric_error(const json& t, double parent_error, const std::string& file, const std::string& at) {
+    if (!t.contains("geometricError")) {
+      if (!(parent_error >= 0)) throw InputError(where(file, 0, at + ": geometricError missing (and no parent's)"));
+      quirk(detail::Quirk::kNoGeometricError, file, at);
+      return parent_error;
+    }
+    if (!t["geometricError"].is_number() || !(t["geometricError"].get<double>() >= 0)) {
+      throw InputError(where(file, 0, at + ": geometricError is not a number >= 0"));
+    }
+    return t["geometricError"];
   }
 
   // Throws InputError for a malformed tileset file.
@@ -108,37 +140,30 @@ struct Selector {
     const json j = json::parse(ss.str(), nullptr, /*allow_exceptions=*/false);
     if (j.is_discarded()) throw InputError(where(path, 0, "tileset JSON is malformed"));
     if (!j.is_object()) throw InputError(where(path, 0, "tileset JSON is not an object"));
-    if (!j.contains("asset") || !j["asset"].is_object() || !j["asset"].contains("version") ||
-        !j["asset"]["version"].is_string()) {
-      throw InputError(where(path, 0, "tileset lacks asset.version"));
-    }
-    const std::string version = j["asset"]["version"];
-    if (version != "1.0" && version != "1.1" && version != "0.0") {
-      throw InputError(where(path, 0, "tileset asset.version '" + version + "' unsupported (1.0, 1.1)"));
-    }
+    check_version(j, path);
     if (!j.contains("root") || !j["root"].is_object()) throw InputError(where(path, 0, "tileset lacks a root tile"));
     // The spec requires refine on the root; without one CesiumJS assumes REPLACE (with a warning), and so do we.
+    if (!j["root"].contains("refine")) quirk(detail::Quirk::kNoRootRefine, path, "root");
+    // The tileset's own geometricError stands in for a root that lacks one (-1: neither has one).
+    const double tileset_error = j.contains("geometricError") && j["geometricError"].is_number()
+                                     ? j["geometricError"].get<double>() : -1.0;
     chain.push_back(canonical(path));
-    tile(j["root"], path, fs::path(path).parent_path(), T_parent, "REPLACE", "root", depth);
+    tile(j["root"], path, fs::path(path).parent_path(), T_parent, "REPLACE", tileset_error, "root", depth);
     chain.pop_back();
   }
 
   void tile(const json& t, const std::string& file, const fs::path& dir, const Eigen::Matrix4d& T_parent,
-            const std::string& parent_refine, const std::string& at, int depth) {
+            const std::string& parent_refine, double parent_error, const std::string& at, int depth) {
     if (depth > kMaxDepth) {
       throw InputError(where(file, 0, at + ": tiles nested deeper than " + std::to_string(kMaxDepth)));
     }
     if (!t.is_object()) throw InputError(where(file, 0, at + ": tile is not an object"));
-    if (!t.contains("geometricError") || !t["geometricError"].is_number() ||
-        !(t["geometricError"].get<double>() >= 0)) {
-      throw InputError(where(file, 0, at + ": geometricError missing or negative"));
-    }
+    const double error = geometric_error(t, parent_error, file, at);
     if (t.contains("implicitTiling")) {
       reject(file + ": " + at + ": implicit tiling not supported, subtree skipped");
       return;
     }
     check_volume(t, file, at);
-    const double error = t["geometricError"];
     const Eigen::Matrix4d T = T_parent * tile_transform(t, file, at);
     std::string refine = parent_refine;
     if (t.contains("refine")) {
@@ -159,7 +184,7 @@ struct Selector {
     else external_only(t, file, dir, T, at, depth);
     if (enough) return;
     for (std::size_t i = 0; i < children->size(); ++i) {
-      tile((*children)[i], file, dir, T, refine, at + "/" + std::to_string(i), depth + 1);
+      tile((*children)[i], file, dir, T, refine, error, at + "/" + std::to_string(i), depth + 1);
     }
   }
 
@@ -172,10 +197,10 @@ struct Selector {
     }
     std::vector<std::string> out_uris;
     for (const json* c : list) {
-      const char* key = c->contains("uri") ? "uri" : "url";  // 1.1 / 1.0 spell it uri, pre-1.0 url
-      if (!c->is_object() || !c->contains(key) || !(*c)[key].is_string()) {
-        throw InputError(where(file, 0, at + ": content has no uri"));
-      }
+      if (!c->is_object()) throw InputError(where(file, 0, at + ": content is not an object"));
+      const char* key = c->contains("uri") ? "uri" : "url";  // 1.0 / 1.1 spell it uri, pre-1.0 url
+      if (!c->contains(key) || !(*c)[key].is_string()) throw InputError(where(file, 0, at + ": content has no uri"));
+      if (key[2] == 'l') quirk(detail::Quirk::kContentUrl, file, at);
       out_uris.push_back((*c)[key].get<std::string>());
     }
     return out_uris;
@@ -221,9 +246,9 @@ struct Selector {
 }  // namespace
 
 std::vector<TileContentRef> select_3dtiles_contents(const std::string& tileset_json, double max_geometric_error_m,
-                                                    LoadReport* report) {
+                                                    LoadReport* report, bool strict) {
   if (!(max_geometric_error_m >= 0)) throw UsageError("max_geometric_error_m must be >= 0");
-  Selector s{max_geometric_error_m, report, {}, {}};
+  Selector s{max_geometric_error_m, strict, report, {}, {}};
   s.tileset(tileset_json, Eigen::Matrix4d::Identity(), 0);
   return std::move(s.out);
 }

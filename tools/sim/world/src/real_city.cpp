@@ -153,6 +153,9 @@ City convert_checked(const Scenario& scenario, const Origin& origin, const RealC
   if (note_rejected && !model.rejected.empty())
     std::cerr << "note: city.path: " << model.rejected.size() << " part(s) not used, first: " << model.rejected.front()
               << "\n";
+  if (note_rejected && !model.warnings.empty())
+    std::cerr << "note: city.path: " << model.warnings.size() << " quirk(s) accepted, first: " << model.warnings.front()
+              << "\n";
   City city = detail::convert_source_model(model, config, extent_W);
   if (city.buildings.empty())
     throw InputError(where(scenario.name, 0, "city.path: " + *scenario.city.path + ": no buildings in the model"));

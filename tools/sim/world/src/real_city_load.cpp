@@ -197,6 +197,7 @@ SourceModel load_source_model(const Scenario& scenario, const Origin& origin, co
     throw InputError(where(scenario.name, 0, "city.path: " + what));
   }
   model.rejected = std::move(report.rejected);
+  model.warnings = std::move(report.warnings);
   return model;
 }
 

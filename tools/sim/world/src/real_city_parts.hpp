@@ -27,6 +27,7 @@ struct SourceModel {
   std::vector<int> part_of_triangle;   // index into parts, one per triangle
   std::vector<SourcePart> parts;
   std::vector<std::string> rejected;   // parts the loader could not use, "<file>: <reason>"
+  std::vector<std::string> warnings;   // quirks accepted as CesiumJS does, one per quirk and file
 };
 
 // Reads scenario.city with the twin loaders into the W of `origin`. Throws InputError "SCENARIO: city.path: ..."

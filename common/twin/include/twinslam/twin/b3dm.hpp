@@ -36,6 +36,7 @@ struct B3dmContent {
   std::optional<Eigen::Vector3d> rtc_center;    // feature table RTC_CENTER, z-up tile frame [m]
   BatchTable batch_table;
   int header_bytes = 28;                        // 20 / 24 for the legacy headers
+  bool unpadded = false;                        // byteLength not a multiple of 8 (accepted by kLenient only)
 };
 
 // kStrict also requires the spec's 8-byte padding of the whole tile (byteLength % 8 == 0), as 3d-tiles-validator

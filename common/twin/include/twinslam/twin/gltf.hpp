@@ -23,6 +23,7 @@ namespace twinslam::twin {
 struct GltfContent {
   Mesh mesh;                           // y-up model frame [m]; p_W holds model coordinates here
   std::vector<std::uint32_t> batch_id; // per vertex, from _BATCHID (or legacy BATCHID / batchId); empty if absent
+  bool cesium_rtc = false;             // the deprecated CESIUM_RTC extension placed it
 };
 
 // base_dir: where a JSON glTF's relative buffer URIs are looked up ("" = none allowed but data: URIs).

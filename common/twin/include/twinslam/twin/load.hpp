@@ -27,11 +27,15 @@ struct LoadOptions {
   double default_height_m = 10.0;   // OSM: height of a building with neither height nor levels [m]
   // 3D Tiles: the coarsest tiles whose geometricError is <= this are used (0 = the leaves, the most detailed) [m].
   double max_geometric_error_m = 0.0;
+  // 3D Tiles: refuse the quirks of pre-1.0 / non-conforming tilesets (missing geometricError or asset.version,
+  // content.url, legacy or unpadded b3dm, CESIUM_RTC) instead of accepting them with a warning as CesiumJS does.
+  bool strict = false;
 };
 
 struct LoadReport {
   std::size_t parts_loaded = 0;          // tiles, city objects, OSM ways: whatever the format's unit is
   std::vector<std::string> rejected;     // one line per rejected part: "<file>: <reason>"
+  std::vector<std::string> warnings;     // one line per quirk and file, accepted as CesiumJS does: "<file>: <quirk> ..."
 };
 
 // Throws InputError for an unreadable / unknown / malformed source (naming the file and the problem).

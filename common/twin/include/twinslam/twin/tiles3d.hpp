@@ -38,17 +38,20 @@ struct TileContentRef {
 };
 
 // Walks the tileset (and its external tilesets) and returns the contents chosen for max_geometric_error_m.
-// Throws InputError for a malformed top-level tileset; problems below it go to report->rejected.
+// Throws InputError for a malformed top-level tileset; problems below it go to report->rejected. Quirks of pre-1.0
+// tilesets (tiles3d_quirks.hpp: missing geometricError -> the parent's, missing asset.version, content.url, root
+// without refine) are accepted with one line per quirk and file in report->warnings, or refused when strict.
 std::vector<TileContentRef> select_3dtiles_contents(const std::string& tileset_json, double max_geometric_error_m,
-                                                    LoadReport* report);
+                                                    LoadReport* report, bool strict = false);
 
 // One content placed in W. batch_id (optional) receives the per-vertex batch ids of b3dm content (empty if none),
 // batch_table the b3dm batch table (for a cmpt: those of its last b3dm, ids not offset: use them on b3dm content).
-// Unsupported inner tiles of a cmpt are skipped with a line in report->rejected. Throws InputError naming the file
+// Unsupported inner tiles of a cmpt are skipped with a line in report->rejected. Legacy / unpadded b3dm and
+// CESIUM_RTC are accepted with a line in report->warnings, or refused when strict. Throws InputError naming the file
 // and problem.
 Mesh load_tile_content(const TileContentRef& content, const EnuFrame& enu,
                        std::vector<std::uint32_t>* batch_id = nullptr, BatchTable* batch_table = nullptr,
-                       LoadReport* report = nullptr);
+                       LoadReport* report = nullptr, bool strict = false);
 
 Mesh load_3dtiles(const std::string& tileset_json, const LoadOptions& options, LoadReport* report);
 
