@@ -106,22 +106,23 @@ TEST(Tiles3dQuirks, StrictModeRefusesEachQuirk) {
   LoadReport report;
   EXPECT_GT(load_3dtiles(tmp.path("good.json"), options(true), &report).num_triangles(), 0u);
   EXPECT_TRUE(report.warnings.empty() && report.rejected.empty());
-  // Content quirks reject that content in strict mode and warn otherwise: the legacy-header sample tile, and the
+  // Content quirks too, and they fail the whole load (not just that part): the legacy-header sample tile, and the
   // sample city's unpadded ll.b3dm.
   const std::string legacy = sample("cesium-tools/Batched/BatchedDeprecated1/tileset.json");
-  LoadReport lenient, strict;
+  LoadReport lenient;
   EXPECT_GT(load_3dtiles(legacy, options(false), &lenient).num_triangles(), 0u);
   EXPECT_NE(joined(lenient.warnings).find("batchedDeprecated1.b3dm: legacy b3dm header"), std::string::npos)
       << joined(lenient.warnings);
-  EXPECT_TRUE(load_3dtiles(legacy, options(true), &strict).empty());
-  ASSERT_EQ(strict.rejected.size(), 1u);
-  EXPECT_NE(strict.rejected[0].find("legacy b3dm header (20 / 24 bytes) (refused in strict mode)"), std::string::npos)
-      << strict.rejected[0];
+  expect_input_error([&] { load_3dtiles(legacy, options(true), nullptr); },
+                     {"batchedDeprecated1.b3dm", "legacy b3dm header (20 / 24 bytes) (refused in strict mode)"});
   write_text(tmp.path("ll.json"), R"({"asset":{"version":"1.0"},"root":{)" + kSphere +
                                       R"(,"geometricError":0,"refine":"ADD","content":{"uri":")" + kCity + R"(ll.b3dm"}}})");
-  LoadReport unpadded;
-  EXPECT_TRUE(load_3dtiles(tmp.path("ll.json"), options(true), &unpadded).empty());
-  ASSERT_EQ(unpadded.rejected.size(), 1u);
-  EXPECT_NE(unpadded.rejected[0].find("ll.b3dm: byteLength: b3dm byteLength not a multiple of 8 (refused"),
-            std::string::npos) << unpadded.rejected[0];
+  expect_input_error([&] { load_3dtiles(tmp.path("ll.json"), options(true), nullptr); },
+                     {"ll.b3dm: byteLength: b3dm byteLength not a multiple of 8 (refused in strict mode)"});
+  // In an external tileset as well (elsewhere a bad external tileset is one rejected part).
+  write_text(tmp.path("ext.json"), quirky(R"({"version":"1.0"})"));
+  write_text(tmp.path("root.json"), R"({"asset":{"version":"1.0"},"root":{)" + kSphere +
+                                        R"(,"geometricError":50,"refine":"ADD","content":{"uri":"ext.json"}}})");
+  expect_input_error([&] { load_3dtiles(tmp.path("root.json"), options(true), nullptr); },
+                     {"ext.json", "refused in strict mode"});
 }

@@ -114,6 +114,8 @@ Mesh load_3dtiles(const std::string& tileset_json, const LoadOptions& options, L
     try {
       mesh_W.append(load_tile_content(c, enu, nullptr, nullptr, report, options.strict));
       if (report != nullptr) ++report->parts_loaded;
+    } catch (const detail::QuirkRefused&) {
+      throw;  // strict mode: a quirk fails the load instead of one part
     } catch (const InputError& e) {
       if (report != nullptr) report->rejected.emplace_back(e.what());
     }

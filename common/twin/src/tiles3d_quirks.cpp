@@ -32,7 +32,7 @@ QuirkText text(Quirk q) {
 
 void note_quirk(Quirk quirk, const std::string& file, const std::string& at, bool strict, LoadReport* report) {
   const QuirkText t = text(quirk);
-  if (strict) throw InputError(where(file, 0, at + ": " + t.what + " (refused in strict mode)"));
+  if (strict) throw QuirkRefused(where(file, 0, at + ": " + t.what + " (refused in strict mode)"));
   if (report == nullptr) return;
   const std::string key = file + ": " + t.what + " ";
   const bool listed = std::any_of(report->warnings.begin(), report->warnings.end(),

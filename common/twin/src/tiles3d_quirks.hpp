@@ -5,6 +5,7 @@
 // the 3D Tiles spec and 3d-tiles-validator have it.
 #include <string>
 
+#include "twinslam/core/error.hpp"
 #include "twinslam/twin/load.hpp"
 
 namespace twinslam::twin::detail {
@@ -20,7 +21,14 @@ enum class Quirk {
   kCesiumRtc,          // glTF CESIUM_RTC extension (deprecated; RTC_CENTER in the feature table replaces it)
 };
 
-// strict: throws InputError "<file>: <at>: <quirk> (refused in strict mode)". Otherwise adds
+// A quirk refused in strict mode: ends the whole load (the loaders let it through where they collect other bad
+// parts as rejected), so `twin build --strict` exits 2 naming it.
+class QuirkRefused : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// strict: throws QuirkRefused "<file>: <at>: <quirk> (refused in strict mode)". Otherwise adds
 // "<file>: <quirk> (first at <at>); <fallback>" to report->warnings unless that file already has that quirk listed.
 void note_quirk(Quirk quirk, const std::string& file, const std::string& at, bool strict, LoadReport* report);
 

@@ -236,6 +236,8 @@ struct Selector {
     const std::size_t chain_size = chain.size();
     try {
       tileset(path, T, depth + 1);
+    } catch (const detail::QuirkRefused&) {
+      throw;
     } catch (const InputError& e) {
       chain.resize(chain_size);  // unwound past tileset()'s pop
       reject(e.what());

@@ -47,8 +47,8 @@ std::vector<TileContentRef> select_3dtiles_contents(const std::string& tileset_j
 // One content placed in W. batch_id (optional) receives the per-vertex batch ids of b3dm content (empty if none),
 // batch_table the b3dm batch table (for a cmpt: those of its last b3dm, ids not offset: use them on b3dm content).
 // Unsupported inner tiles of a cmpt are skipped with a line in report->rejected. Legacy / unpadded b3dm and
-// CESIUM_RTC are accepted with a line in report->warnings, or refused when strict. Throws InputError naming the file
-// and problem.
+// CESIUM_RTC are accepted with a line in report->warnings, or refused when strict (then load_3dtiles fails as a
+// whole). Throws InputError naming the file and problem.
 Mesh load_tile_content(const TileContentRef& content, const EnuFrame& enu,
                        std::vector<std::uint32_t>* batch_id = nullptr, BatchTable* batch_table = nullptr,
                        LoadReport* report = nullptr, bool strict = false);
