@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # One-step set-up on Debian 12: installs the missing Debian packages (idempotent: a few seconds when all are there),
-# configures and builds twinslam in Release with -j2 into build/.
+# configures and builds twinslam in Release with -j2 into build/ (TWINSLAM_BUILD_DIR). Extra arguments go to the
+# cmake configure step (scripts/test.sh --sanitize passes the sanitizer build's options).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${TWINSLAM_BUILD_DIR:-$root/build}
@@ -17,6 +18,7 @@ if (( ${#missing[@]} )); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+[[ -n "${TWINSLAM_SETUP_PACKAGES_ONLY:-}" ]] && exit 0
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
 # Two jobs: a 2-core, 24 GB machine; translation units with PCL (later) need ~2 GB each.
 cmake --build "$build" -j2

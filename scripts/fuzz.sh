@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Fuzzing (issue 15): bash scripts/fuzz.sh TARGET[,TARGET...]|all SECONDS [LIBFUZZER ARGS...]
+# Builds the libFuzzer targets with clang (ASan + UBSan + coverage) into build-fuzz/ (TWINSLAM_FUZZ_DIR) and runs
+# TARGET (a name of tests/fuzz/targets/, or every one of them) for SECONDS each. The corpus grows in
+# build-fuzz/corpus/TARGET, seeded from the committed tests/fuzz/corpus/TARGET (and the 3D Tiles samples of
+# ../shared/data for the 3D Tiles targets). A crash, leak, sanitizer report, uncaught exception other than the
+# contract's InputError, or an input slower than 10 s ends the run with exit 1 and the input in
+# build-fuzz/crashes/TARGET/: fix the bug, then commit the input to tests/fuzz/corpus/TARGET/ as a regression test.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${TWINSLAM_FUZZ_DIR:-$root/build-fuzz}
+if (( $# < 2 )) || ! [[ "$2" =~ ^[0-9]+$ ]]; then
+  echo "usage: scripts/fuzz.sh TARGET[,TARGET...]|all SECONDS [LIBFUZZER ARGS...]" >&2
+  exit 2
+fi
+target=$1 seconds=$2
+shift 2
+all=$(cd "$root/tests/fuzz/targets" && ls *.cpp | sed 's/\.cpp$//')
+if [[ "$target" == all ]]; then targets=$all
+else
+  targets=${target//,/ }
+  for t in $targets; do
+    grep -qx "$t" <<< "$all" || { echo "fuzz.sh: unknown target '$t' (targets: $(echo $all))" >&2; exit 2; }
+  done
+fi
+
+# Packages (clang and libclang-rt-dev are in scripts/packages.txt) without building the Release tree.
+TWINSLAM_SETUP_PACKAGES_ONLY=1 bash "$root/scripts/setup.sh"
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DTWINSLAM_FUZZ=ON -DTWINSLAM_BUILD_BENCHMARKS=OFF >/dev/null
+cmake --build "$build" -j2 --target $(printf 'fuzz_%s ' $targets)
+
+export ASAN_OPTIONS="detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+export root build seconds
+export FUZZ_EXTRA="$*"
+
+# One target: its run's executions and coverage on success; exit 1 with the first line of the report otherwise.
+run_one() {
+  local t=$1 corpus=$build/corpus/$1 crashes=$build/crashes/$1/ log=$build/fuzz_$1.log
+  mkdir -p "$corpus" "$crashes"
+  local seeds=("$root/tests/fuzz/corpus/$t")
+  case $t in b3dm|gltf|tile_content|tileset) [[ -d "$root/../shared/data/3dtiles" ]] && seeds+=("$root/../shared/data/3dtiles") ;; esac
+  # shellcheck disable=SC2086  # FUZZ_EXTRA: the caller's extra libFuzzer flags, split on spaces
+  if "$build/bin/fuzz_$t" "$corpus" "${seeds[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 \
+       -print_final_stats=1 -artifact_prefix="$crashes" $FUZZ_EXTRA > "$log" 2>&1; then
+    local execs cov
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+    cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1)
+    echo "fuzz.sh: $t ok: ${seconds} s, $execs executions, $cov, corpus $(ls "$corpus" | wc -l) inputs"
+  else
+    echo "fuzz.sh: $t FAILED (log $log, input in $crashes): $(grep -m1 -E "ERROR: |runtime error|uncaught|terminate called|deadly signal|Timeout" "$log" || tail -1 "$log")" >&2
+    return 1
+  fi
+}
+export -f run_one
+# Two targets at a time (TWINSLAM_FUZZ_JOBS): a 2-core machine; each libFuzzer process is single-threaded.
+printf '%s\n' $targets | xargs -P "${TWINSLAM_FUZZ_JOBS:-2}" -I{} bash -c 'run_one {}' || exit 1
