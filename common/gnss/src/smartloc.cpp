@@ -70,6 +70,10 @@ std::vector<Epoch> read_smartloc_pseudoranges(const std::string& path) {
     p.range_m = v[1];
     p.sigma_m = std::sqrt(v[2]);
     p.satellite_ecef = {v[3], v[4], v[5]};
+    // An id beyond int is undefined to convert (found by fuzzing); real ids are small integers (PRN / slot).
+    if (!(v[6] >= 0 && v[6] <= 1e6) || v[6] != std::floor(v[6])) {
+      throw InputError(where(path, line, "pseudorange3: satellite id must be an integer in [0, 1e6]"));
+    }
     p.satellite_id = static_cast<int>(v[6]);
     p.system = system_of(v[7], path, line);
     p.elevation_deg = v[8];

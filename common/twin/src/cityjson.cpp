@@ -42,7 +42,7 @@ CityJsonModel load_cityjson(const std::string& path, const LoadOptions& options,
   json doc;
   try {
     doc = json::parse(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax, and out_of_range for numbers like 1E434 (found by fuzzing)
     throw InputError(where(path, 0, std::string("JSON syntax error: ") + e.what()));
   }
   if (!doc.is_object() || doc.value("type", json()) != "CityJSON")

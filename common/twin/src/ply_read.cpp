@@ -240,7 +240,13 @@ PlyFile read_ply(const std::string& path) {
         if (n < 0 || n > static_cast<double>(cur.remaining()))
           throw InputError(where(path, 0, "PLY list length " + std::to_string(n) + " is impossible"));
         std::vector<long long> list(static_cast<std::size_t>(n));
-        for (auto& v : list) v = static_cast<long long>(cur.read(p.type));
+        for (auto& v : list) {
+          const double index = cur.read(p.type);
+          // A float list value beyond long long is undefined to convert (found by fuzzing); any index that large is
+          // out of range anyway.
+          if (!(std::abs(index) < 9.0e18)) throw InputError(where(path, 0, "PLY list value out of range"));
+          v = static_cast<long long>(index);
+        }
         if (static_cast<int>(k) == ilist) polygons.push_back(std::move(list));
       }
       if (is_vertex) {
