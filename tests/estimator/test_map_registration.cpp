@@ -55,7 +55,8 @@ TEST(MapRegistrationFactor, JacobiansEqualNumericOnesAndTheResidualVanishesAtThe
   Eigen::Matrix<double, 6, 4, Eigen::RowMajor> J_twl;
   double* jac[2] = {J_pose.data(), J_twl.data()};
   ASSERT_TRUE(f->Evaluate(params, r, jac));
-  const auto numeric = [&](double* block, int i) {
+  // Returns a vector, not an Eigen expression: that would refer to rp / rm after they are gone (found by ASan).
+  const auto numeric = [&](double* block, int i) -> Eigen::Matrix<double, 6, 1> {
     const double h = 1e-6, v = block[i];
     double rp[6], rm[6];
     block[i] = v + h;
