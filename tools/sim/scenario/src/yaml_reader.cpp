@@ -29,7 +29,10 @@ void YamlReader::expect_map(const YAML::Node& node, const std::string& key) cons
 void YamlReader::check_keys(const YAML::Node& map, const std::string& prefix,
                             std::initializer_list<const char*> allowed) const {
   for (const auto& kv : map) {
-    const std::string name = kv.first.as<std::string>();
+    // A key that is itself a sequence or mapping has no name: as<std::string>() would throw yaml-cpp's
+    // BadConversion past the InputError contract (found by fuzzing).
+    if (!kv.first.IsScalar()) fail(kv.first, prefix + "?", "a key must be a plain name");
+    const std::string name = kv.first.Scalar();
     bool known = false;
     for (const char* a : allowed) known = known || name == a;
     if (known) continue;
