@@ -243,7 +243,8 @@ void Supervisor::Impl::restart_due() {
       if (!c->restart_at) {
         const double delay_s = c->spec.restart_delay_s * static_cast<double>(1 << std::min(c->restarts, 4));
         c->restart_at = now + std::chrono::microseconds(static_cast<long long>(delay_s * 1e6));
-        std::cerr << "supervisor: " << c->spec.name << " (pid " << c->pid << ") ended with " << describe_end(c->result.exit_code, c->result.signal)
+        std::cerr << "supervisor: " << c->spec.name << " (pid " << c->pid << ") ended with "
+                  << describe_end(c->result.exit_code, c->result.signal)
                   << "; restarting in " << delay_s << " s (restart " << c->restarts + 1 << " of at most "
                   << c->spec.max_restarts << ")" << std::endl;
       }

@@ -117,7 +117,7 @@ std::vector<std::uint8_t> encode_points(const Mesh& points_W, const StoreConfig&
 namespace {
 
 // Draco sizes a point cloud's attribute buffers from the point count in its header before it reads a single point:
-// a corrupt count makes it allocate gigabytes (found by fuzzing: 3 GB from 35 bytes). Read that count first and
+// a corrupt count makes it allocate gigabytes (found by fuzzing: 3 GB from 187 bytes). Read that count first and
 // refuse one the bytes cannot hold; even a degenerate KD-tree of identical points needs more than a bit per point.
 void check_point_count(const std::uint8_t* data, std::size_t size, const std::function<InputError(std::string)>& fail) {
   draco::DecoderBuffer buffer;

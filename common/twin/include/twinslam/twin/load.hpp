@@ -35,7 +35,7 @@ struct LoadOptions {
 struct LoadReport {
   std::size_t parts_loaded = 0;          // tiles, city objects, OSM ways: whatever the format's unit is
   std::vector<std::string> rejected;     // one line per rejected part: "<file>: <reason>"
-  std::vector<std::string> warnings;     // one line per quirk and file, accepted as CesiumJS does: "<file>: <quirk> ..."
+  std::vector<std::string> warnings;     // one line per quirk and file accepted as CesiumJS does: "<file>: <quirk>"
 };
 
 // Throws InputError for an unreadable / unknown / malformed source (naming the file and the problem).
