@@ -118,6 +118,39 @@ TEST_F(TwinDraco, CorruptOrTruncatedBytesAreInputErrors) {
   }
 }
 
+// Draco sizes its tables from the counts at the head of a bitstream: a few bytes claiming 2^28 faces made it
+// allocate 5.6 GB (found by fuzzing). Such counts are refused with the file's name before Draco sees them.
+std::vector<std::uint8_t> draco_head(std::uint8_t geometry, std::uint8_t method, std::vector<std::uint8_t> fields) {
+  std::vector<std::uint8_t> out = {'D', 'R', 'A', 'C', 'O', 2, 2, geometry, method, 0, 0};
+  for (const std::uint8_t b : fields) out.push_back(b);
+  out.resize(out.size() + 150, 0x1c);  // some payload, as the fuzzer's input had
+  return out;
+}
+
+TEST(TwinDracoCounts, CountsTheBytesCannotHoldAreRefusedBeforeDecoding) {
+  const std::vector<std::uint8_t> huge = {0xff, 0xff, 0xff, 0x7f};  // varint 2^28 - 1
+  const std::vector<std::pair<std::string, std::vector<std::uint8_t>>> cases = {
+      // edgebreaker mesh (method 1): traversal 0, vertices 3, faces 2^28 - 1
+      {"faces", draco_head(1, 1, {0, 3, huge[0], huge[1], huge[2], huge[3], 0, 1, 0})},
+      // edgebreaker mesh: vertices 2^28 - 1, faces 1
+      {"vertices", draco_head(1, 1, {0, huge[0], huge[1], huge[2], huge[3], 1, 0, 1, 0})},
+      // sequential mesh (method 0): faces 1, points 2^28 - 1
+      {"points", draco_head(1, 0, {1, huge[0], huge[1], huge[2], huge[3]})},
+      // point cloud (geometry 0): int32 point count 2^28 - 1
+      {"points", draco_head(0, 1, {0xff, 0xff, 0xff, 0x0f})},
+  };
+  for (const auto& [what, bytes] : cases) {
+    try {
+      decode_draco(bytes.data(), bytes.size(), "tiles/3_4.mesh.drc");
+      ADD_FAILURE() << what << ": decoded";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("tiles/3_4.mesh.drc"), std::string::npos) << message;
+      EXPECT_NE(message.find("claims 268435455 " + what), std::string::npos) << message;
+    }
+  }
+}
+
 TEST(TwinDracoEncode, EmptyOrNonFiniteInputIsRejected) {
   EXPECT_THROW(encode_mesh(Mesh{}, StoreConfig{}), InputError);
   EXPECT_THROW(encode_points(Mesh{}, StoreConfig{}), InputError);

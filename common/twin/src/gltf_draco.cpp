@@ -5,6 +5,7 @@
 
 #include <draco/compression/decode.h>
 
+#include "draco_guard.hpp"
 #include "twinslam/core/error.hpp"
 
 namespace twinslam::twin::detail {
@@ -29,6 +30,9 @@ const draco::PointAttribute* attribute(const draco::Mesh& mesh, int unique_id, i
 
 DracoPrimitive decode_draco_primitive(const std::uint8_t* data, std::size_t size, int position_id,
                                       int batch_attribute_id, const std::string& name) {
+  if (const std::string problem = draco_count_problem(data, size); !problem.empty()) {
+    throw InputError(where(name, 0, "Draco data " + problem));
+  }
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(data), size);
   draco::Decoder decoder;

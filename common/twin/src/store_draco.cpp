@@ -3,9 +3,6 @@
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
-#include <draco/compression/point_cloud/point_cloud_decoder.h>
-#include <draco/metadata/geometry_metadata.h>
-#include <draco/metadata/metadata_decoder.h>
 #include <draco/point_cloud/point_cloud_builder.h>
 
 #include <cmath>
@@ -13,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "draco_guard.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/twin/store.hpp"
 
@@ -114,38 +112,12 @@ std::vector<std::uint8_t> encode_points(const Mesh& points_W, const StoreConfig&
   return encode(pc.get(), nullptr, config);
 }
 
-namespace {
-
-// Draco sizes a point cloud's attribute buffers from the point count in its header before it reads a single point:
-// a corrupt count makes it allocate gigabytes (found by fuzzing: 3 GB from 187 bytes). Read that count first and
-// refuse one the bytes cannot hold; even a degenerate KD-tree of identical points needs more than a bit per point.
-void check_point_count(const std::uint8_t* data, std::size_t size, const std::function<InputError(std::string)>& fail) {
-  draco::DecoderBuffer buffer;
-  buffer.Init(reinterpret_cast<const char*>(data), size);
-  draco::DracoHeader header;
-  if (!draco::PointCloudDecoder::DecodeHeader(&buffer, &header).ok()) throw fail("bad header");
-  if (header.encoder_type != draco::POINT_CLOUD) return;  // meshes: Draco checks its connectivity counts
-  if (header.flags & METADATA_FLAG_MASK) {
-    draco::MetadataDecoder metadata_decoder;
-    draco::GeometryMetadata metadata;
-    if (!metadata_decoder.DecodeGeometryMetadata(&buffer, &metadata)) throw fail("bad metadata");
-  }
-  std::int32_t num_points = 0;
-  if (!buffer.Decode(&num_points)) throw fail("truncated before the point count");
-  constexpr double kMaxPointsPerByte = 8.0;
-  if (num_points < 0 || static_cast<double>(num_points) > kMaxPointsPerByte * static_cast<double>(size) + 64.0) {
-    throw fail("claims " + std::to_string(num_points) + " points in " + std::to_string(size) + " bytes");
-  }
-}
-
-}  // namespace
-
 Mesh decode_draco(const std::uint8_t* data, std::size_t size, const std::string& what) {
   const auto fail = [&](const std::string& why) {
     return InputError(where(what, 0, "not a valid Draco file: " + why));
   };
   if (data == nullptr || size == 0) throw fail("empty");
-  check_point_count(data, size, fail);
+  if (const std::string problem = detail::draco_count_problem(data, size); !problem.empty()) throw fail(problem);
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(data), size);
   auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
