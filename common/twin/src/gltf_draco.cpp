@@ -19,6 +19,10 @@ const draco::PointAttribute* attribute(const draco::Mesh& mesh, int unique_id, i
     throw InputError(where(name, 0, "Draco data has no attribute with id " + std::to_string(unique_id) +
                                         " (" + what + ")"));
   }
+  // Draco loads a boolean attribute's bytes as C++ bools, undefined for values other than 0 and 1 (store_draco.cpp).
+  if (att->data_type() == draco::DT_BOOL) {
+    throw InputError(where(name, 0, "Draco " + what + " attribute is boolean"));
+  }
   if (att->num_components() < min_components) {
     throw InputError(where(name, 0, "Draco " + what + " attribute has " +
                                         std::to_string(att->num_components()) + " components"));

@@ -141,6 +141,11 @@ Mesh decode_draco(const std::uint8_t* data, std::size_t size, const std::string&
   if (pos == nullptr || pos->num_components() != 3) throw fail("no 3D POSITION attribute");
   const draco::PointAttribute* nrm = pc->GetNamedAttribute(draco::GeometryAttribute::NORMAL);
   if (nrm != nullptr && nrm->num_components() != 3) throw fail("NORMAL attribute is not 3D");
+  // Draco converts a boolean attribute by loading each byte as a C++ bool, undefined for bytes other than 0 and 1
+  // (fuzzing found it): geometry is never boolean, so such a file is refused.
+  if (pos->data_type() == draco::DT_BOOL || (nrm != nullptr && nrm->data_type() == draco::DT_BOOL)) {
+    throw fail("boolean POSITION or NORMAL attribute");
+  }
 
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // a Draco file from elsewhere: positions are already in W
   std::vector<double> o;
