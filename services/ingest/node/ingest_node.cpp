@@ -1,5 +1,6 @@
 #include "ingest_node.hpp"
 
+#include <cmath>
 #include <map>
 #include <set>
 #include <mutex>
@@ -42,12 +43,15 @@ class IngestNode::Impl {
   bool run() {
     if (!wait_for_readers()) return false;
     heartbeat_.set_state(msg::SVC_RUNNING);
-    const auto events = replay_order(ds_, features_ == nullptr ? nullptr : &features_->frames);
-    const std::int64_t t0 = events.front().stamp_ns;
+    const auto plan = plan_faults(replay_order(ds_, features_ == nullptr ? nullptr : &features_->frames), opt_.faults);
+    if (opt_.faults.any()) spdlog::warn("injecting sensor faults: {}", describe_plan(plan));
+    const std::int64_t t0 = plan.front().event.stamp_ns;
     const auto wall0 = Clock::now();
     std::int64_t pending_frame = -1;  // stamp of the last frame sent and not yet acknowledged
-    for (const auto& ev : events) {
+    for (const auto& [ev, action, fault] : plan) {
       if (shutdown_requested()) return false;
+      if (fault != nullptr) counters_.add(std::string("fault_") + fault);
+      if (action == FaultAction::kDrop) continue;  // never sent, so never waited for
       if (opt_.realtime) {
         const auto due = wall0 + std::chrono::nanoseconds(static_cast<std::int64_t>((ev.stamp_ns - t0) / opt_.speed));
         while (Clock::now() < due && !shutdown_requested()) {
@@ -56,7 +60,8 @@ class IngestNode::Impl {
       } else if (is_frame(ev) && pending_frame >= 0) {
         wait_for_acks(pending_frame);
       }
-      publish(ev);
+      publish(ev, action);
+      if (action == FaultAction::kTwice) publish(ev, action);
       if (is_frame(ev)) pending_frame = ev.stamp_ns;
     }
     if (!opt_.realtime) {
@@ -136,7 +141,7 @@ class IngestNode::Impl {
     }
   }
 
-  void publish(const ReplayEvent& ev) {
+  void publish(const ReplayEvent& ev, FaultAction action) {
     const std::string& vehicle = node_.config().vehicle_id;
     bool ok = true;
     switch (ev.stream) {
@@ -146,15 +151,19 @@ class IngestNode::Impl {
         m.vehicle_id(vehicle);
         m.stamp_ns(r.stamp_ns);
         m.seq(imu_seq_++);
-        m.gyro_radps(dds::to_msg(r.gyro_radps));
-        m.accel_mps2(dds::to_msg(r.accel_mps2));
+        const double bad = action == FaultAction::kNan ? std::nan("") : INFINITY;
+        const bool broken = action == FaultAction::kNan || action == FaultAction::kInf;
+        m.gyro_radps(dds::to_msg(broken ? Eigen::Vector3d::Constant(bad) : r.gyro_radps));
+        m.accel_mps2(dds::to_msg(broken ? Eigen::Vector3d::Constant(bad) : r.accel_mps2));
         ok = imu_.publish(m);
         counters_.add("imu_out");
         break;
       }
       case Stream::Image: {
         const auto& r = ds_.images[ev.index];
-        const cv::Mat img = load_mono8(r.file);
+        cv::Mat img = load_mono8(r.file);
+        if (action == FaultAction::kBlack) img.setTo(0);
+        if (action == FaultAction::kSaturated) img.setTo(255);
         msg::Image m;
         m.vehicle_id(vehicle);
         m.camera_id(opt_.camera_id);
@@ -173,7 +182,10 @@ class IngestNode::Impl {
         break;
       }
       case Stream::Features: {
-        ok = features_w_.publish(feature_message(features_->frames[ev.index]));
+        msg::FeatureFrame m = feature_message(features_->frames[ev.index]);
+        // A black or saturated frame has no texture: a tracker finds no features in it.
+        if (action == FaultAction::kBlack || action == FaultAction::kSaturated) m.features().clear();
+        ok = features_w_.publish(m);
         counters_.add("feature_frames_out");
         break;
       }
@@ -184,7 +196,7 @@ class IngestNode::Impl {
         m.stamp_ns(r.stamp_ns);
         m.seq(gnss_seq_++);
         m.latitude_deg(r.latitude_deg);
-        m.longitude_deg(r.longitude_deg);
+        m.longitude_deg(r.longitude_deg + (action == FaultAction::kGnssShift ? east_deg(r, opt_.faults) : 0.0));
         m.altitude_m(r.altitude_m);
         m.covariance_enu_m2().fill(0.0);
         m.covariance_enu_m2()[0] = r.std_east_m * r.std_east_m;
@@ -201,6 +213,12 @@ class IngestNode::Impl {
       counters_.add("publish_failed");
       if (!opt_.realtime) throw std::runtime_error("publishing blocked: a reader stopped taking samples");
     }
+  }
+
+  // gnss_jump: east_m metres east as degrees of longitude (a sphere: the jump's size, not survey accuracy, matters).
+  static double east_deg(const GnssRecord& r, const FaultConfig& faults) {
+    constexpr double kEarthRadius = 6378137.0;  // [m]
+    return faults.gnss_jump.east_m / (kEarthRadius * std::cos(r.latitude_deg * M_PI / 180.0)) * 180.0 / M_PI;
   }
 
   msg::FeatureFrame feature_message(const FeatureFrameRecord& r) {

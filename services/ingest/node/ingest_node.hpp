@@ -12,6 +12,7 @@
 #include "twinslam/dds/node.hpp"
 #include "twinslam/camera/camera_config.hpp"
 #include "twinslam/ingest/dataset.hpp"
+#include "twinslam/ingest/faults.hpp"
 #include "twinslam/ingest/features.hpp"
 
 namespace twinslam::ingest {
@@ -30,6 +31,7 @@ struct IngestOptions {
   std::chrono::milliseconds start_timeout{30000};
   std::chrono::milliseconds ack_timeout{30000};
   unsigned short camera_id = 0;
+  FaultConfig faults;                          // sensor faults injected into the replay (none by default)
 };
 
 // Ideal feature tracks to publish as FeatureFrame instead of the images (sim --features), with the camera that

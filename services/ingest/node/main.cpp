@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   twinslam::ingest::IngestConfig cli;  // what the command line gives; each option given wins over --config
   bool linger = false, features = false;
   app.add_option("--dataset", dataset_dir, "Dataset folder (EuRoC ASL layout)")->required();
-  app.add_option("--config", config_file, "Ingest config YAML: speed, start_timeout_s, ack_timeout_s");
+  app.add_option("--config", config_file, "Ingest config YAML: speed, start_timeout_s, ack_timeout_s, faults");
   auto* speed = app.add_option("--speed", cli.speed, "Realtime pacing factor")->check(CLI::PositiveNumber)
                     ->capture_default_str();
   app.add_option("--ack-from", opt.ack_from, "Lockstep: services that must acknowledge each camera frame")
@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
                  dataset.images.size(), dataset.gnss.size());
     opt.realtime = service.realtime;
     opt.speed = config.speed;
+    opt.faults = config.faults;
     opt.start_timeout = std::chrono::milliseconds(static_cast<long>(config.start_timeout_s * 1000));
     opt.ack_timeout = std::chrono::milliseconds(static_cast<long>(config.ack_timeout_s * 1000));
     opt.wait_readers = twinslam::ingest::parse_wait_readers(wait_readers, static_cast<int>(opt.ack_from.size()));

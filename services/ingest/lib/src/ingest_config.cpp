@@ -29,12 +29,14 @@ void IngestConfig::validate(const std::string& source) const {
   // A day: beyond it a wait is a hang, not a slow start.
   in_range(source, "start_timeout_s", start_timeout_s, 0.0, 86400.0, " s");
   in_range(source, "ack_timeout_s", ack_timeout_s, 0.0, 86400.0, " s");
+  faults.validate(source);
 }
 
 void bind_ingest_config(yaml::Fields& fields, IngestConfig& config) {
   fields.number("speed", config.speed)
       .number("start_timeout_s", config.start_timeout_s, "s")
       .number("ack_timeout_s", config.ack_timeout_s, "s");
+  bind_fault_config(fields.section("faults"), config.faults);
 }
 
 IngestConfig parse_ingest_config(const std::string& text, const std::string& file, const IngestConfig& base) {

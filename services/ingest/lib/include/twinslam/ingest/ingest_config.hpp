@@ -4,9 +4,11 @@
 //   speed: 1.0             # realtime pacing factor
 //   start_timeout_s: 30    # wait for every consumer before the first sample [s]
 //   ack_timeout_s: 30      # wait for a frame's acknowledgement under --max [s]
+//   faults: {...}          # sensor faults injected into the replay (faults.hpp); none by default
 #include <string>
 
 #include "twinslam/core/yaml_fields.hpp"
+#include "twinslam/ingest/faults.hpp"
 
 namespace twinslam::ingest {
 
@@ -17,6 +19,7 @@ struct IngestConfig {
   double start_timeout_s = 30.0;
   // Lockstep: the longest a frame may take through every acknowledging service before ingest gives up [s].
   double ack_timeout_s = 30.0;
+  FaultConfig faults;  // injected sensor faults (tests and demonstrations of fault handling)
 
   // Throws twinslam::InputError "SOURCE: ingest key 'K': what" naming the first bad field.
   void validate(const std::string& source = "IngestConfig") const;
