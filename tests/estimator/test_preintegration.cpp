@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "imu_test_utils.hpp"
@@ -226,4 +227,37 @@ TEST(Preintegration, CoveringSamplesSelectsTheBracketingSlice) {
   EXPECT_EQ(slice.front().stamp_ns, 90);
   EXPECT_EQ(slice.back().stamp_ns, 100);
   EXPECT_THROW(est::Preintegration(est::PreintegrationConfig{}, {}, slice, 90, 130), twinslam::InputError);
+}
+
+// Issue 15: a gap in the IMU stream. The motion inside it was not measured, so the preintegrated covariance must
+// grow by what an unknown constant rate and acceleration of the gap sigmas do over it (rotation sigma_g dt, velocity
+// sigma_a dt, position sigma_a dt^2 / 2), while the same samples without the gap keep the sensor's own tiny noise.
+TEST(Preintegration, AnImuGapAddsTheUnmeasuredMotionsCovariance) {
+  std::vector<est::ImuSample> samples;
+  for (std::int64_t t = 0; t <= 3'000'000'000; t += 5'000'000) {
+    if (t > 1'000'000'000 && t < 2'000'000'000) continue;  // 1 s without samples
+    samples.push_back({t, Eigen::Vector3d(0.01, -0.02, 0.1), Eigen::Vector3d(0.2, 0.1, 9.81)});
+  }
+  est::PreintegrationConfig c = config();
+  const est::Preintegration gap(c, {}, samples, 0, 3'000'000'000);
+  EXPECT_NEAR(gap.longest_gap_s(), 1.0, 1e-9);
+  c.gap_s = 2.0;  // the same samples with the gap not recognised
+  const est::Preintegration blind(c, {}, samples, 0, 3'000'000'000);
+  EXPECT_NEAR(blind.longest_gap_s(), 1.0, 1e-9);
+  const Eigen::Matrix<double, 9, 1> var_gap = gap.covariance().diagonal(), var_blind = blind.covariance().diagonal();
+  const double dt = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    // Lower bounds: rotation and velocity are rotated by at most 0.3 rad over the interval, so per axis at least
+    // half the gap's variance stays on the axis.
+    EXPECT_GT(var_gap(k), 0.5 * std::pow(c.gap_gyro_sigma * dt, 2)) << "rotation axis " << k;
+    EXPECT_GT(var_gap(3 + k), 0.5 * std::pow(c.gap_accel_sigma * dt, 2)) << "velocity axis " << k;
+    EXPECT_GT(var_gap(6 + k), 0.5 * std::pow(c.gap_accel_sigma * dt * dt / 2, 2)) << "position axis " << k;
+    EXPECT_LT(var_blind(3 + k), 1e-3) << "velocity axis " << k;
+  }
+  // Still a covariance: symmetric and positive definite, so the IMU factor can whiten with it.
+  EXPECT_LT((gap.covariance() - gap.covariance().transpose()).norm(), 1e-12);
+  const Eigen::SelfAdjointEigenSolver<est::Preintegration::Matrix9d> eig(gap.covariance());
+  EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+  // The prediction itself does not change: only the weight.
+  EXPECT_LT((gap.delta().p - blind.delta().p).norm(), 1e-12);
 }

@@ -21,6 +21,11 @@ void PreintegrationConfig::validate() const {
   if (!(repropagate_accel_bias > 0.0) || !std::isfinite(repropagate_accel_bias)) {
     throw InputError("preintegration: repropagate_accel_bias must be finite and > 0");
   }
+  if (!(gap_s > 0.0) || !std::isfinite(gap_s)) throw InputError("preintegration: gap_s must be finite and > 0");
+  if (!(gap_gyro_sigma >= 0.0) || !std::isfinite(gap_gyro_sigma) || !(gap_accel_sigma >= 0.0) ||
+      !std::isfinite(gap_accel_sigma)) {
+    throw InputError("preintegration: gap_gyro_sigma and gap_accel_sigma must be finite and >= 0");
+  }
 }
 
 namespace {
@@ -61,6 +66,7 @@ void Preintegration::propagate() {
   delta_ = PreintegratedDelta{};
   jac_ = PreintegrationBiasJacobians{};
   cov_.setZero();
+  longest_gap_s_ = 0.0;
   for (std::size_t k = 0; k + 1 < nodes_.size(); ++k) step(nodes_[k], nodes_[k + 1]);
   // Products of hundreds of rotations drift off SO(3) by round-off; project once at the end.
   delta_.R = g::so3_normalize(delta_.R);
@@ -115,8 +121,15 @@ void Preintegration::step(const ImuSample& a, const ImuSample& b) {
 
   // Sigma <- F Sigma F^T + G Q G^T with Q = diag(qg I, qa I), by 3x3 blocks: F is sparse and dense 9x9 products
   // cost several times more. Discrete white noise of the sample interval: Cov(eta_d) = sigma^2 / h (Forster Sec. IV).
-  const double qg = config_.noise.gyroscope_noise_density * config_.noise.gyroscope_noise_density / h;
-  const double qa = config_.noise.accelerometer_noise_density * config_.noise.accelerometer_noise_density / h;
+  double qg = config_.noise.gyroscope_noise_density * config_.noise.gyroscope_noise_density / h;
+  double qa = config_.noise.accelerometer_noise_density * config_.noise.accelerometer_noise_density / h;
+  longest_gap_s_ = std::max(longest_gap_s_, h);
+  if (h > config_.gap_s) {
+    // A gap: the rate and acceleration inside it deviate from the interpolation by an unknown constant of the gap
+    // sigmas, which enters through the same G as the white noise (variance sigma^2 instead of sigma_d^2 / h).
+    qg += config_.gap_gyro_sigma * config_.gap_gyro_sigma;
+    qa += config_.gap_accel_sigma * config_.gap_accel_sigma;
+  }
   Eigen::Matrix3d M[3][3];  // M = F Sigma
   for (int c = 0; c < 3; ++c) {
     const Eigen::Matrix3d P0 = cov_.block<3, 3>(0, 3 * c), P1 = cov_.block<3, 3>(3, 3 * c),

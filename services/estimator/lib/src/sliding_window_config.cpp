@@ -32,6 +32,10 @@ void SlidingWindowConfig::validate() const {
   positive(init_accel_bias_sigma, "init_accel_bias_sigma");
   positive(outlier_threshold_px, "outlier_threshold_px");
   positive(max_keyframe_interval_s, "max_keyframe_interval_s");
+  positive(imu_gap_s, "imu_gap_s");
+  if (min_keyframe_features < 0) throw InputError("sliding_window.min_keyframe_features: must be >= 0");
+  positive(imu_gap_gyro_sigma, "imu_gap_gyro_sigma");
+  positive(imu_gap_accel_sigma, "imu_gap_accel_sigma");
   positive(max_speed_mps, "max_speed_mps");
   positive(zero_velocity_max_motion_px, "zero_velocity_max_motion_px");
   positive(zero_velocity_min_interval_s, "zero_velocity_min_interval_s");

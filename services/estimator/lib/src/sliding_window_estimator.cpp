@@ -46,6 +46,15 @@ std::vector<ImuSample> covering(const std::vector<ImuSample>& imu, std::int64_t 
   return out;
 }
 
+// The longest step between the IMU samples that cover (t0, t1], counting the hold to t1 when the buffer ends first
+// (what covering() integrates) [s]; 0 without samples.
+double longest_imu_step_s(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1) {
+  const std::vector<ImuSample> nodes = covering(imu, t0, t1);
+  std::int64_t longest = 0;
+  for (std::size_t k = 1; k < nodes.size(); ++k) longest = std::max(longest, nodes[k].stamp_ns - nodes[k - 1].stamp_ns);
+  return 1e-9 * static_cast<double>(longest);
+}
+
 // x_j from x_i and the preintegrated delta (Forster eq. 33 without noise), g_L = (0, 0, -|g|).
 void predict(const WindowFrame& prev, const Preintegration& pre, double gravity, WindowFrame& next) {
   const ImuState i = frame_state(prev);
@@ -63,6 +72,9 @@ void predict(const WindowFrame& prev, const Preintegration& pre, double gravity,
 PreintegrationConfig preintegration_config(const SlidingWindowConfig& c) {
   PreintegrationConfig p;
   p.noise = c.imu;
+  p.gap_s = c.imu_gap_s;
+  p.gap_gyro_sigma = c.imu_gap_gyro_sigma;
+  p.gap_accel_sigma = c.imu_gap_accel_sigma;
   return p;
 }
 
@@ -129,6 +141,7 @@ bool diverged(const WindowState& s, const SolveSummary& summary) {
 // Keyframe decision for the newest frame against the last keyframe (keyframe_policy.hpp), plus a time limit.
 bool is_keyframe(const WindowState& s, const WindowFrame& kf, const WindowFrame& cur) {
   const auto& c = s.config;
+  if (static_cast<int>(cur.bearings.size()) < c.min_keyframe_features) return false;
   if (1e-9 * static_cast<double>(cur.stamp_ns - kf.stamp_ns) >= c.max_keyframe_interval_s) return true;
   std::vector<TrackedBearing> tracked;
   for (const auto& [id, f_Cc] : cur.bearings) {
@@ -252,10 +265,14 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
                        " has no unit bearing");
     }
   }
+  // An IMU gap since the previous frame is reported with this frame (preintegration.hpp integrates across it).
+  const double imu_step_s = s.last_frame_ns >= 0 ? longest_imu_step_s(s.imu, s.last_frame_ns, stamp_ns) : 0.0;
   s.last_frame_ns = stamp_ns;
   s.local_map.reset();
   auto finish = [&](FrameEstimate e) {
     e.estimator_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    e.imu_gap_s = imu_step_s > s.config.imu_gap_s ? imu_step_s : 0.0;
+    e.few_features = s.initialized && static_cast<int>(features.size()) < s.config.min_keyframe_features;
     trim_imu(s);
     return e;
   };

@@ -31,6 +31,13 @@ struct PreintegrationConfig {
   // repropagate_if_needed() integrates the samples again at the new bias.
   double repropagate_gyro_bias = 0.01;   // |b_g - b_g_bar| [rad/s]
   double repropagate_accel_bias = 0.1;   // |b_a - b_a_bar| [m/s^2]
+  // An IMU gap (a dropped driver buffer, a cable fault: issue 15): a step between samples longer than gap_s is
+  // integrated from the interpolated readings, but the motion inside it was not measured. Its covariance then adds
+  // an unknown constant deviation of the rate and the acceleration from that interpolation (sigmas below), so the
+  // IMU factor across the gap weighs as little as what is known of it and vision carries the window.
+  double gap_s = 0.05;                   // [s] (4 samples at 200 Hz; 10 at 200 Hz with 2 dropped are not a gap)
+  double gap_gyro_sigma = 0.5;           // unmeasured rate during a gap [rad/s]
+  double gap_accel_sigma = 3.0;          // unmeasured acceleration during a gap [m/s^2]
 
   void validate() const;  // throws twinslam::InputError naming the bad field
 };
@@ -89,6 +96,7 @@ class Preintegration {
   std::int64_t t_i_ns() const { return t_i_ns_; }
   std::int64_t t_j_ns() const { return t_j_ns_; }
   double dt() const { return dt_; }  // t_j - t_i [s]
+  double longest_gap_s() const { return longest_gap_s_; }  // longest step between nodes [s]
   const PreintegrationConfig& config() const { return config_; }
   // The integration nodes: the interpolated boundary samples and the samples strictly between them.
   const std::vector<ImuSample>& nodes() const { return nodes_; }
@@ -103,6 +111,7 @@ class Preintegration {
   std::int64_t t_i_ns_ = 0;
   std::int64_t t_j_ns_ = 0;
   double dt_ = 0.0;
+  double longest_gap_s_ = 0.0;
 
   PreintegratedDelta delta_;
   PreintegrationBiasJacobians jac_;

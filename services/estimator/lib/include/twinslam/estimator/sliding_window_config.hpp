@@ -26,6 +26,11 @@ struct SlidingWindowConfig {
   double focal_px = 460.0;             // fu of the camera: px per radian, converts angles to px [px/rad]
   double pixel_sigma = 1.0;            // feature noise [px]
   ImuNoise imu;                        // continuous-time IMU noise (EuRoC imu0/sensor.yaml keys)
+  // IMU gaps (preintegration.hpp): a step between samples longer than imu_gap_s is a gap, integrated with the
+  // unmeasured motion's sigmas below and reported (ODOM_FAULT_IMU_GAP).
+  double imu_gap_s = 0.05;             // [s]
+  double imu_gap_gyro_sigma = 0.5;     // [rad/s]
+  double imu_gap_accel_sigma = 3.0;    // [m/s^2]
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();  // camera in body (nominal, from the dataset)
   // Online calibration of the camera rotation (camera_calibration.hpp): prior sigma per axis of R_BC's correction
   // around the nominal T_BC [deg]; 0 keeps R_BC fixed.
@@ -55,6 +60,11 @@ struct SlidingWindowConfig {
   int max_landmarks = 150;             // triangulated landmarks kept in the window (VINS-Mono tracks 150)
   // A keyframe at least this often even without parallax (hovering), so preintegration intervals stay short [s].
   double max_keyframe_interval_s = 1.0;
+  // A frame with fewer features (a black or saturated image, a covered lens: issue 15) never becomes a keyframe: it
+  // would push the informative keyframes out of the window (2 s of black frames made the ATE 2.3x the clean run's on
+  // tiny); the IMU carries the estimate from the last keyframe to the next textured frame. Reported as
+  // ODOM_FAULT_FEW_FEATURES.
+  int min_keyframe_features = 10;
 
   // Zero-velocity update: at rest (the EuRoC excerpt hovers on the ground for its first seconds) no landmark has
   // parallax, so only the IMU would constrain the window and the accelerometer bias would drift it. When at least

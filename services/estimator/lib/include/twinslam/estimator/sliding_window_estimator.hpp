@@ -47,6 +47,8 @@ struct FrameEstimate {
   Eigen::Isometry3d T_WL = Eigen::Isometry3d::Identity();
   bool aligned = false;
   double estimator_ms = 0.0;                      // wall time spent in add_frame [ms]
+  double imu_gap_s = 0.0;  // longest IMU gap (> config imu_gap_s) since the previous frame, 0 if none [s]
+  bool few_features = false;  // fewer than min_keyframe_features: the pose is the IMU's prediction (not a keyframe)
 };
 
 
