@@ -40,10 +40,14 @@ bool fuses_gnss(const std::string& mode) { return mode == "vio-gnss" || mode == 
 bool fuses_gnss_loose(const std::string& mode) { return mode == "vio-gnss-loose"; }
 bool needs_gnss(const std::string& mode) { return fuses_gnss(mode) || fuses_gnss_loose(mode); }
 
+// RunRecord::odometry_faults() names the bits in this order.
+static_assert(msg::ODOM_FAULT_IMU_REJECTED == 1 && msg::ODOM_FAULT_IMU_GAP == 2 && msg::ODOM_FAULT_FEW_FEATURES == 4 &&
+              msg::ODOM_FAULT_FRAME_GAP == 8 && msg::ODOM_FAULT_GNSS_REJECTED == 16);
+
 OdometryRecord to_record(const msg::Odometry& m) {
   const bool estimated = m.status() == msg::ODOM_TRACKING || m.status() == msg::ODOM_ALIGNED;
   return {m.stamp_ns(), dds::from_msg(m.T_WB()), dds::from_msg(m.T_LB()), m.estimator_ms(), estimated,
-          m.status() == msg::ODOM_ALIGNED};
+          m.status() == msg::ODOM_ALIGNED, m.faults()};
 }
 
 RegistrationRecord to_record(const msg::Registration& m) {
@@ -229,6 +233,17 @@ int run_pipeline(const RunOptions& o) {
                         {"old_pid", e.old_pid}, {"new_pid", e.new_pid}});
   }
   run["restarts"] = restarts;
+  // Each service's counters from the last heartbeat of each of its processes that reached this recorder (summed over
+  // a restarted service's processes): what it rejected, dropped or met on the way (faults.hpp, issue 15).
+  nlohmann::json counters = nlohmann::json::object();
+  for (const ServiceInfo& s : monitor.services()) {
+    nlohmann::json& c = counters[s.service];
+    if (c.is_null()) c = nlohmann::json::object();
+    for (const auto& [name, value] : s.counters) c[name] = c.value(name, 0ULL) + value;
+  }
+  run["counters"] = counters;
+  // Poses that carried each Odometry fault bit (exact: Odometry is reliable, unlike the best-effort heartbeats).
+  run["odometry_faults"] = record.odometry_faults();
   // When T_WB entered W (null: never): world-frame evaluations start there (twinslam bench).
   const auto aligned = record.first_aligned_stamp_ns(), first = record.first_estimate_stamp_ns();
   run["aligned_from_stamp_ns"] = aligned ? nlohmann::json(*aligned) : nlohmann::json();

@@ -61,6 +61,20 @@ RunRecord::Latency RunRecord::pipeline_latency() const {
   return {v.size(), at(0.5), at(0.99)};
 }
 
+std::map<std::string, std::size_t> RunRecord::odometry_faults() const {
+  // The names of the estimator's heartbeat counters for each ODOM_FAULT_* bit (Estimation.idl), bit 0 first.
+  static const char* const kNames[] = {"imu_rejected", "frames_with_imu_gap", "frames_few_features", "frame_gaps",
+                                       "gnss_rejected"};
+  std::map<std::string, std::size_t> out;
+  std::lock_guard lock(mutex_);
+  for (const auto& [o, _] : odometry_) {
+    for (std::size_t bit = 0; bit < std::size(kNames); ++bit) {
+      if (o.faults & (1u << bit)) ++out[kNames[bit]];
+    }
+  }
+  return out;
+}
+
 std::size_t RunRecord::odometry_count() const {
   std::lock_guard lock(mutex_);
   return odometry_.size();

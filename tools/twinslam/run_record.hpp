@@ -21,6 +21,7 @@ struct OdometryRecord {
   double estimator_ms = 0;
   bool estimated = true;  // false while initializing: the pose is a placeholder, kept out of the trajectories
   bool aligned = false;   // ODOM_ALIGNED: T_WB is in the world frame W
+  std::uint32_t faults = 0;  // Odometry.faults: ODOM_FAULT_* bits
 };
 
 struct RegistrationRecord {
@@ -62,6 +63,8 @@ class RunRecord {
   std::pair<std::size_t, std::size_t> local_map_landmarks() const;
 
   std::size_t odometry_count() const;
+  // Per bit of Odometry.faults: how many poses carried it, named like the estimator's counter of it.
+  std::map<std::string, std::size_t> odometry_faults() const;
   // Stamp of the first pose in W (ODOM_ALIGNED) and of the first estimated pose, if any.
   std::optional<std::int64_t> first_aligned_stamp_ns() const;
   std::optional<std::int64_t> first_estimate_stamp_ns() const;

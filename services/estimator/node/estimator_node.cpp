@@ -48,6 +48,7 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
     counters_.add("imu_in");
     if (!worker_.push_imu({m.stamp_ns(), dds::from_msg(m.gyro_radps()), dds::from_msg(m.accel_mps2())})) {
       counters_.add("imu_rejected");  // duplicate or out of order: the estimator needs increasing stamps
+      faults_.fetch_or(msg::ODOM_FAULT_IMU_REJECTED);
     }
   });
   node.subscribe<msg::FeatureFrame>(dds::topics::kFeatures, [this](const msg::FeatureFrame& m) {
@@ -88,6 +89,19 @@ void EstimatorNode::report_fusion() {
   }
 }
 
+std::uint32_t EstimatorNode::frame_faults(const FrameEstimate& e) {
+  std::uint32_t bits = 0;
+  if (e.imu_gap_s > 0.0) {
+    counters_.add("frames_with_imu_gap");
+    bits |= msg::ODOM_FAULT_IMU_GAP;
+  }
+  if (e.few_features) {
+    counters_.add("frames_few_features");
+    bits |= msg::ODOM_FAULT_FEW_FEATURES;
+  }
+  return bits;
+}
+
 void EstimatorNode::log_camera_calibration(std::int64_t stamp_ns) {
   // Every 30 s of data: what the online calibration made of the camera rotation (camera_calibration.hpp).
   if (estimator_.config().camera_rotation_sigma_deg <= 0.0 || stamp_ns - calibration_logged_ns_ < 30'000'000'000) {
@@ -116,17 +130,27 @@ void EstimatorNode::apply(const GlobalInput& input) {
   if (!enu_) return;  // no origin: W is unknown, the fix cannot be used
   const Eigen::Vector3d p_W = enu_->from_lla(g.latitude_deg(), g.longitude_deg(), g.altitude_m());
   const Eigen::Matrix3d cov = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(g.covariance_enu_m2().data());
-  if (p_W.allFinite() && cov.allFinite()) fusion_.on_gnss(g.stamp_ns(), p_W, cov);
+  if (p_W.allFinite() && cov.allFinite()) {
+    fusion_.on_gnss(g.stamp_ns(), p_W, cov);
+  } else {
+    counters_.add("gnss_rejected");
+    faults_.fetch_or(msg::ODOM_FAULT_GNSS_REJECTED);
+  }
 }
 
 void EstimatorNode::handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu,
                            std::vector<GlobalInput>&& global) {
   for (const auto& g : global) apply(g);
+  if (frame_gaps_.on_frame(frame.stamp_ns())) {
+    counters_.add("frame_gaps");
+    faults_.fetch_or(msg::ODOM_FAULT_FRAME_GAP);
+  }
   for (const auto& s : new_imu) {
     try {
       estimator_.add_imu(s);
     } catch (const InputError& e) {
       counters_.add("imu_rejected");
+      faults_.fetch_or(msg::ODOM_FAULT_IMU_REJECTED);
       spdlog::warn("imu: {}", e.what());
     }
   }
@@ -161,6 +185,7 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
     odom.bias_gyro(to_msg(e.bias.gyro));
     odom.bias_accel(to_msg(e.bias.accel));
     odom.estimator_ms(e.estimator_ms);
+    odom.faults(faults_.exchange(0) | frame_faults(e));
     odometry_.publish(odom);
     counters_.add("odometry_out");
     if (e.init_timed_out && counters_.get("init_timeout_reported") == 0) {

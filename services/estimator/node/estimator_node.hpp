@@ -6,6 +6,7 @@
 // the frame, never stuck at the end of a dataset. Global inputs reach the worker thread through the same
 // SensorWorker, in sensor-time order relative to the frames (sensor_worker.hpp), and go to GlobalFusion
 // (global_fusion.hpp): GNSS for the initial alignment T_WL (eq. 11), accepted registrations as map factors (eq. 7).
+#include <atomic>
 #include <chrono>
 #include <map>
 #include <string>
@@ -17,6 +18,7 @@
 #include "twinslam/core/sensor_worker.hpp"
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
+#include "twinslam/estimator/frame_gap.hpp"
 #include "twinslam/estimator/global_fusion.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
 #include "twinslam/twin/geo.hpp"
@@ -48,6 +50,8 @@ class EstimatorNode {
   void apply(const GlobalInput& input);
   void process(const msg::FeatureFrame& frame);
   void report_fusion();
+  // The ODOM_FAULT_* bits of one frame's estimate (IMU gap, too few features), counted on the heartbeat.
+  std::uint32_t frame_faults(const FrameEstimate& e);
   void log_camera_calibration(std::int64_t stamp_ns);
 
   dds::Node& node_;
@@ -58,6 +62,9 @@ class EstimatorNode {
   bool await_registration_;
   bool send_covariance_;  // LocalMap.T_WB_covariance: only when registrations are fused (it costs a dense inverse)
   std::map<std::string, unsigned long long> reported_;  // fusion counts already in the heartbeat
+  // ODOM_FAULT_* bits met since the last Odometry: set from DDS callbacks and the worker, taken by the next Odometry.
+  std::atomic<std::uint32_t> faults_{0};
+  FrameGapDetector frame_gaps_;  // worker thread only
   std::chrono::milliseconds registration_wait_;
   dds::Writer<msg::Odometry> odometry_;
   dds::Writer<msg::LocalMap> local_map_;

@@ -1,0 +1,150 @@
+// Issue 15 item 3: sensor faults meet defined behaviour. Each test injects one kind of fault into the replay of the
+// `tiny` scenario (ingest.yaml `faults:`, faults.hpp), runs the pipeline in `vio` and checks that nothing crashed, that
+// the Odometry reported what happened (run.json `odometry_faults`, counted from every pose), and that the trajectory
+// after recovery stays within 2x the ATE of the same run without faults.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "subprocess.hpp"
+
+namespace fs = std::filesystem;
+using namespace twinslam;
+
+namespace {
+
+const fs::path kWork = TWINSLAM_FAULTS_WORK_DIR;
+
+// Holds an exclusive lock on a file for the life of the object: ctest runs these tests in parallel processes, and
+// the dataset and the clean run are made once and shared.
+class FileLock {
+ public:
+  explicit FileLock(const fs::path& file) : fd_(::open(file.c_str(), O_CREAT | O_RDWR, 0644)) { ::flock(fd_, LOCK_EX); }
+  ~FileLock() {
+    ::flock(fd_, LOCK_UN);
+    ::close(fd_);
+  }
+
+ private:
+  int fd_;
+};
+
+// A file's text, or "" if it does not exist.
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The tiny scenario with ideal feature tracks, simulated once per build of the simulator.
+fs::path tiny_dataset() {
+  fs::create_directories(kWork);
+  FileLock lock(kWork / "lock");
+  const fs::path dir = kWork / "tiny";
+  const fs::path exe = test::bin("twinslam");
+  const std::string stamp = std::to_string(fs::last_write_time(exe).time_since_epoch().count());
+  if (read_text(kWork / "tiny.stamp") != stamp) {
+    fs::remove_all(dir);
+    const auto sim = test::run_process({exe, "sim", "--scenario", "tiny", "--out", dir.string(), "--features", "--quiet"},
+                                       {}, std::chrono::seconds(180));
+    if (sim.exit_code != 0) throw std::runtime_error("sim tiny failed: " + sim.out + sim.err);
+    std::ofstream(kWork / "tiny.stamp") << stamp;
+  }
+  return dir;
+}
+
+struct FaultRun {
+  nlohmann::json run;             // run.json
+  double ate_m = 0;               // position ATE RMSE after a 4-DoF alignment [m]
+  std::string output;
+};
+
+// `twinslam run DATASET --mode vio --features` with `ingest_yaml` as the ingest config ("" for none).
+FaultRun run_with(const std::string& name, const std::string& ingest_yaml) {
+  const fs::path dataset = tiny_dataset();
+  const fs::path base = kWork / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base / "config");
+  if (!ingest_yaml.empty()) std::ofstream(base / "config/ingest.yaml") << ingest_yaml;
+  FaultRun r;
+  const auto run = test::run_process({test::bin("twinslam"), "run", dataset.string(), "--mode", "vio", "--features",
+                                      "--out", (base / "run").string(), "--config-dir", (base / "config").string(),
+                                      "--domain", std::to_string(test::test_domain())},
+                                     {}, std::chrono::seconds(180));
+  r.output = run.out + run.err;
+  if (run.exit_code != 0) return r;
+  r.run = nlohmann::json::parse(read_text(base / "run/run.json"));
+  const auto eval = test::run_process({test::bin("twinslam"), "eval", "--est", (base / "run/trajectory.tum").string(),
+                                       "--gt", (dataset / "groundtruth.tum").string(), "--align", "posyaw", "--json"});
+  r.output += eval.err;
+  if (eval.exit_code == 0) r.ate_m = nlohmann::json::parse(eval.out)["ate_pos_rmse_m"].get<double>();
+  fs::remove_all(base);
+  return r;
+}
+
+// The clean run's ATE, once per dataset.
+double clean_ate() {
+  const fs::path dataset = tiny_dataset();
+  {
+    FileLock lock(kWork / "clean.lock");
+    const std::string cached = read_text(kWork / "clean_ate.txt");
+    if (!cached.empty() && read_text(kWork / "clean.stamp") == read_text(kWork / "tiny.stamp")) return std::stod(cached);
+    const FaultRun clean = run_with("clean", "");
+    EXPECT_EQ(clean.run.value("status", ""), "ok") << clean.output;
+    // Without faults no pose reports one: the bits are not noise.
+    EXPECT_TRUE(clean.run["odometry_faults"].empty()) << clean.run["odometry_faults"].dump();
+    EXPECT_GT(clean.ate_m, 0.0) << clean.output;
+    std::ofstream(kWork / "clean_ate.txt") << clean.ate_m;
+    std::ofstream(kWork / "clean.stamp") << read_text(kWork / "tiny.stamp");
+    return clean.ate_m;
+  }
+}
+
+// Runs with the fault and checks the three promises; `counter` is the odometry_faults entry that must report it.
+void expect_defined_behaviour(const std::string& name, const std::string& faults_yaml, const std::string& counter) {
+  const double clean = clean_ate();
+  const FaultRun r = run_with(name, "faults:\n" + faults_yaml);
+  ASSERT_FALSE(r.run.is_null()) << r.output;
+  EXPECT_EQ(r.run["status"], "ok") << r.output;
+  for (const auto& [service, code] : r.run["services"].items()) EXPECT_EQ(code, 0) << service;
+  EXPECT_EQ(r.run["frames_processed"], r.run["messages"]["twinslam/v1/features"]) << "every frame sent got a pose";
+  EXPECT_GT(r.run["odometry_faults"].value(counter, 0), 0) << r.run["odometry_faults"].dump();
+  EXPECT_GT(r.ate_m, 0.0) << r.output;
+  EXPECT_LE(r.ate_m, 2.0 * clean) << "clean " << clean << " m";
+  std::printf("%s: ATE %.3f m (clean %.3f m), odometry_faults %s\n", name.c_str(), r.ate_m, clean,
+              r.run["odometry_faults"].dump().c_str());
+}
+
+}  // namespace
+
+TEST(SensorFaults, NonFiniteImuSamplesAreRefusedAndReported) {
+  expect_defined_behaviour("imu_nonfinite",
+                           "  imu_nan: {at_s: 8, duration_s: 0.05}\n  imu_inf: {at_s: 14, duration_s: 0.05}\n",
+                           "imu_rejected");
+}
+
+TEST(SensorFaults, ATwoSecondImuGapIsIntegratedAcrossAndReported) {
+  expect_defined_behaviour("imu_gap", "  imu_gap: {at_s: 12, duration_s: 2.0}\n", "frames_with_imu_gap");
+}
+
+TEST(SensorFaults, DuplicatedAndOutOfOrderImuStampsAreRefusedAndReported) {
+  expect_defined_behaviour("imu_stamps",
+                           "  imu_duplicate: {at_s: 8, duration_s: 0.5}\n  imu_out_of_order: {at_s: 14, duration_s: 0.5}\n",
+                           "imu_rejected");
+}
+
+TEST(SensorFaults, DroppedCameraFramesAreReported) {
+  expect_defined_behaviour("frame_drop", "  frame_drop: {at_s: 12, duration_s: 1.0}\n", "frame_gaps");
+}
+
+TEST(SensorFaults, BlackAndSaturatedFramesAreBridgedByTheImuAndReported) {
+  expect_defined_behaviour("frame_dark",
+                           "  frame_black: {at_s: 8, duration_s: 0.5}\n  frame_saturated: {at_s: 14, duration_s: 2.0}\n",
+                           "frames_few_features");
+}
