@@ -372,3 +372,28 @@ TEST(GlobalFusion, LooseAndTightGnssExcludeEachOther) {
 
 }  // namespace
 }  // namespace twinslam::estimator
+
+namespace twinslam::estimator {
+namespace {
+
+// A registration that registration accepted but that cannot be fused (NaN information, a broken correction) is
+// counted as invalid and never reaches the window, however the fusion stands.
+TEST(GlobalFusion, AnUnfusableRegistrationIsCountedAndDropped) {
+  SlidingWindowEstimator est{SlidingWindowConfig{}};
+  GlobalFusionConfig g;
+  g.fuse_registrations = true;
+  GlobalFusion fusion(est, g);
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Identity();
+  information(0, 0) = NAN;
+  fusion.on_registration(1'000, true, Eigen::Isometry3d::Identity(), information);
+  information(0, 0) = 1.0;
+  information(0, 1) = 0.5;  // not symmetric
+  fusion.on_registration(2'000, true, Eigen::Isometry3d::Identity(), information);
+  EXPECT_EQ(fusion.counts().registrations_in, 2u);
+  EXPECT_EQ(fusion.counts().registrations_invalid, 2u);
+  EXPECT_EQ(fusion.counts().registrations_before_alignment, 0u);  // refused before anything else looked at it
+  EXPECT_EQ(fusion.counts().registrations_accepted, 0u);
+}
+
+}  // namespace
+}  // namespace twinslam::estimator

@@ -90,6 +90,33 @@ TEST(MapRegistrationFactor, RankDeficientInformationGivesNoInformationAlongTheFr
 }
 
 // LocalMap.T_WB_covariance: the same uncertainty, sampled, in the Registration's order and perturbation.
+// Issue 15: a Registration from the wire with NaN, a non-symmetric or an indefinite information matrix, or a
+// correction that is not a rigid motion, is refused before it reaches the window; a rank-deficient one is valid.
+TEST(MapRegistrationFactor, RegistrationsThatCannotBeFusedAreRefusedWithTheReason) {
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Identity() * 400.0;
+  H(2, 2) = 0.0;  // rank-deficient: fine
+  const Eigen::Isometry3d dT = Eigen::Translation3d(0.5, -0.2, 0.1) * Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ());
+  EXPECT_EQ(registration_problem(dT, H), "");
+  EXPECT_EQ(registration_problem(dT, Eigen::Matrix<double, 6, 6>::Zero()), "");  // no information at all is none
+  Eigen::Matrix<double, 6, 6> bad = H;
+  bad(1, 4) = NAN;
+  EXPECT_EQ(registration_problem(dT, bad), "information not finite");
+  bad = H;
+  bad(1, 4) = 50.0;  // one side only
+  EXPECT_EQ(registration_problem(dT, bad), "information not symmetric");
+  bad = H;
+  bad(5, 5) = -1.0;
+  EXPECT_EQ(registration_problem(dT, bad), "information not positive semi-definite");
+  Eigen::Isometry3d wrong = dT;
+  wrong.translation().x() = INFINITY;
+  EXPECT_EQ(registration_problem(wrong, H), "correction not finite");
+  wrong = dT;
+  wrong.linear() *= 1.1;  // a scale is no rotation
+  EXPECT_EQ(registration_problem(wrong, H), "correction rotation not a rotation");
+  wrong.linear() = -Eigen::Matrix3d::Identity();  // a reflection neither
+  EXPECT_EQ(registration_problem(wrong, H), "correction rotation not a rotation");
+}
+
 TEST(MapRegistrationFactor, CovarianceInRegistrationOrderIsTheSameUncertaintyOfTheSamePose) {
   std::mt19937 rng(5);
   std::normal_distribution<double> n01(0.0, 1.0);

@@ -81,6 +81,7 @@ void EstimatorNode::report_fusion() {
       {"registrations_unmatched", r.unmatched},
       {"registrations_before_alignment", f.registrations_before_alignment},
       {"registrations_unknown_keyframe", f.registrations_unknown_keyframe},
+      {"registrations_invalid", f.registrations_invalid},
       {"registration_wait_timeouts", worker_.expectations_timed_out()}};
   for (const auto& [name, value] : now) {
     unsigned long long& last = reported_[name];
@@ -120,6 +121,10 @@ void EstimatorNode::apply(const GlobalInput& input) {
     counters_.add("registration_in");
     std::array<double, 36> info{};
     std::copy(r->information().begin(), r->information().end(), info.begin());
+    if (r->status() == msg::REG_ACCEPTED) {
+      const std::string problem = registration_problem(dds::from_msg(r->correction_W()), geometry::from_row_major(info));
+      if (!problem.empty()) spdlog::warn("registration for keyframe {}: {}; not fused", r->keyframe_stamp_ns(), problem);
+    }
     fusion_.on_registration(r->keyframe_stamp_ns(), r->status() == msg::REG_ACCEPTED, dds::from_msg(r->correction_W()),
                             geometry::from_row_major(info),  // (rotation, translation) as on the wire
                             r->readmitted());

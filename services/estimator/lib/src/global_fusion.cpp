@@ -196,6 +196,10 @@ void GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted
                                    const Eigen::Matrix<double, 6, 6>& information, bool readmitted) {
   ++counts_.registrations_in;
   if (!accepted || !config_.fuse_registrations) return;
+  if (!registration_problem(correction_W, information).empty()) {
+    ++counts_.registrations_invalid;  // from the wire: never into the window (the node logs why)
+    return;
+  }
   if (!aligned_) {
     // Computed against a T_WL nobody had aligned yet (the identity guess): where its ICP converged means nothing.
     ++counts_.registrations_before_alignment;

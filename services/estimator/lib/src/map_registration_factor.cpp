@@ -1,5 +1,7 @@
 #include "twinslam/estimator/map_registration_factor.hpp"
 
+#include <algorithm>
+
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/rotation.h>
 #include <Eigen/Eigenvalues>
@@ -53,6 +55,20 @@ MapRegistration map_registration_from_correction(std::int64_t keyframe_stamp_ns,
   m.dp_W = dT_W * c - c;
   m.information = information;
   return m;
+}
+
+std::string registration_problem(const Eigen::Isometry3d& dT_W, const Eigen::Matrix<double, 6, 6>& information) {
+  if (!dT_W.matrix().allFinite()) return "correction not finite";
+  const Eigen::Matrix3d R = dT_W.linear();
+  if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-6 || R.determinant() < 0.0) {
+    return "correction rotation not a rotation";
+  }
+  if (!information.allFinite()) return "information not finite";
+  const double scale = information.cwiseAbs().maxCoeff();
+  if ((information - information.transpose()).cwiseAbs().maxCoeff() > 1e-6 * scale) return "information not symmetric";
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(information);
+  if (es.eigenvalues().minCoeff() < -1e-9 * std::max(scale, 1e-300)) return "information not positive semi-definite";
+  return "";
 }
 
 Eigen::Matrix<double, 6, 6> information_square_root(const Eigen::Matrix<double, 6, 6>& H) {

@@ -78,7 +78,8 @@ struct GlobalFusionCounts {
                      registrations_unknown_keyframe = 0, registrations_before_alignment = 0,
                      realignments_declined = 0,  // after an outage, the GNSS fit was less certain than the estimate
                      provisional_alignments = 0,  // T_WL set (or replaced) from a fit not yet converged
-                     registration_realignments = 0;  // T_WL re-opened by a re-admitted registration
+                     registration_realignments = 0,  // T_WL re-opened by a re-admitted registration
+                     registrations_invalid = 0;  // accepted by registration but not fusable (registration_problem)
 };
 
 class GlobalFusion {

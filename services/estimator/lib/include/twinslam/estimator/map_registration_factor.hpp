@@ -13,6 +13,8 @@
 // no information there, where a Cholesky factor (the paper code's) would fail. Blocks: pose [7], T_WL [4].
 // Compared with eq. (7), which measures T_LB with T_WL held fixed, this lets registrations refine T_WL (paper
 // Sec. III-D: "T_WL is estimated"), and keeps the measurement in W where the twin is.
+#include <string>
+
 #include <ceres/cost_function.h>
 #include <Eigen/Geometry>
 
@@ -33,6 +35,12 @@ struct MapRegistration {
 MapRegistration map_registration_from_correction(std::int64_t keyframe_stamp_ns, const Eigen::Isometry3d& T_WB_estimate,
                                                  const Eigen::Isometry3d& dT_W,
                                                  const Eigen::Matrix<double, 6, 6>& information);
+
+// Why a registration from the wire cannot be fused, or "" when it can: a correction that is not finite or whose
+// rotation is not one, an information matrix that is not finite, not symmetric (relative 1e-6) or not positive
+// semi-definite (an eigenvalue below -1e-9 of the largest). Fusing any of these would put NaN or a negative weight
+// into the window (issue 15: "a Registration with a non-symmetric or NaN information matrix").
+std::string registration_problem(const Eigen::Isometry3d& dT_W, const Eigen::Matrix<double, 6, 6>& information);
 
 // S with S^T S = H for a symmetric positive semi-definite H (negative eigenvalues from round-off clamped to zero).
 Eigen::Matrix<double, 6, 6> information_square_root(const Eigen::Matrix<double, 6, 6>& H);
