@@ -129,6 +129,8 @@ void RegistrationNode::serve(const Pending& p) {
   out.seq(seq_++);
   const Eigen::Vector3d p_WB = (source.T_WL * source.T_LB).translation();
   try {
+    // A NaN pose would become this vehicle's position in the twin window (and its tile eviction distances).
+    if (!(source.T_WL * source.T_LB).matrix().allFinite()) throw InputError("LocalMap keyframe pose is not finite");
     const WindowedTwinStats w = twin_.update(m.vehicle_id(), p_WB);
     counters_.add("index_tiles_added", w.added);
     if (!twin_.covers(p_WB, 0.5 * options_.window_m)) {
