@@ -14,13 +14,17 @@
 namespace twinslam::twin::detail {
 namespace {
 
-// A bound no real geometry reaches: even a grid whose every residual entropy-codes to nothing spends more than a
-// bit per element on its attributes; the absolute cap keeps one tile's tables under ~2 GB however large the file.
-constexpr double kMaxElementsPerByte = 1024.0;
-constexpr std::uint64_t kMaxElements = 1ULL << 26;
+// Bounds no real geometry reaches, tight enough that what Draco then allocates per attribute (elements times up to
+// 255 components of 8 bytes) stays below a gigabyte for the inputs a fuzzer makes. Real meshes spend more than a
+// byte per triangle (edgebreaker connectivity is about 2 bits, the quantized positions 10-20 bits a vertex); a
+// point cloud's KD-tree more than a bit per point. The absolute cap keeps one tile's tables bounded however large
+// the file (a twin tile holds tens of thousands of triangles, a 3D Tiles tile rarely a million).
+constexpr double kMaxFacesPerByte = 32.0;
+constexpr double kMaxPointsPerByte = 8.0;
+constexpr std::uint64_t kMaxElements = 1ULL << 24;
 
-std::uint64_t element_limit(std::size_t size) {
-  const double by_size = kMaxElementsPerByte * static_cast<double>(size) + 1024.0;
+std::uint64_t element_limit(std::size_t size, double per_byte) {
+  const double by_size = per_byte * static_cast<double>(size) + 64.0;
   return std::min<std::uint64_t>(kMaxElements, static_cast<std::uint64_t>(by_size));
 }
 
@@ -49,7 +53,7 @@ std::string too_many(const char* what, std::uint64_t n, std::size_t size) {
 std::string point_cloud_problem(draco::DecoderBuffer& buffer, std::size_t size) {
   std::int32_t num_points = 0;
   if (!buffer.Decode(&num_points)) return "";
-  if (num_points < 0 || static_cast<std::uint64_t>(num_points) > element_limit(size)) {
+  if (num_points < 0 || static_cast<std::uint64_t>(num_points) > element_limit(size, kMaxPointsPerByte)) {
     return too_many("points", static_cast<std::uint32_t>(num_points), size);
   }
   return "";
@@ -59,8 +63,8 @@ std::string sequential_mesh_problem(draco::DecoderBuffer& buffer, std::uint16_t 
   const bool fixed = version < DRACO_BITSTREAM_VERSION(2, 2);
   std::uint64_t faces = 0, points = 0;
   if (!read_count(buffer, fixed, faces) || !read_count(buffer, fixed, points)) return "";
-  if (faces > element_limit(size)) return too_many("faces", faces, size);
-  if (points > element_limit(size)) return too_many("points", points, size);
+  if (faces > element_limit(size, kMaxFacesPerByte)) return too_many("faces", faces, size);
+  if (points > element_limit(size, 3.0 * kMaxFacesPerByte)) return too_many("points", points, size);
   return "";
 }
 
@@ -71,7 +75,7 @@ std::string edgebreaker_mesh_problem(draco::DecoderBuffer& buffer, std::uint16_t
   std::uint64_t new_vertices = 0, vertices = 0, faces = 0, symbols = 0, split_symbols = 0;
   if (version < DRACO_BITSTREAM_VERSION(2, 2) && !read_count(buffer, fixed, new_vertices)) return "";
   if (!read_count(buffer, fixed, vertices) || !read_count(buffer, fixed, faces)) return "";
-  if (faces > element_limit(size)) return too_many("faces", faces, size);
+  if (faces > element_limit(size, kMaxFacesPerByte)) return too_many("faces", faces, size);
   std::uint8_t attribute_data = 0;
   if (!buffer.Decode(&attribute_data) || !read_count(buffer, fixed, symbols) ||
       !read_count(buffer, fixed, split_symbols)) {
@@ -79,7 +83,7 @@ std::string edgebreaker_mesh_problem(draco::DecoderBuffer& buffer, std::uint16_t
   }
   // The corner table is sized for the encoded vertices plus one per split symbol, and for the new vertices.
   const std::uint64_t table_vertices = vertices + std::max(split_symbols, new_vertices);
-  if (table_vertices > element_limit(size)) return too_many("vertices", table_vertices, size);
+  if (table_vertices > element_limit(size, 3.0 * kMaxFacesPerByte)) return too_many("vertices", table_vertices, size);
   return "";
 }
 
