@@ -101,6 +101,14 @@ std::string draco_count_problem(const std::uint8_t* data, std::size_t size) {
     draco::GeometryMetadata metadata;
     if (!metadata_decoder.DecodeGeometryMetadata(&buffer, &metadata)) return "";
   }
+  if (header.encoder_type == draco::POINT_CLOUD && header.encoder_method == draco::POINT_CLOUD_KD_TREE_ENCODING &&
+      version < DRACO_BITSTREAM_VERSION(2, 3)) {
+    // These older KD-tree streams carry a second point count inside the attribute data, after headers of variable
+    // length, and Draco sizes the attribute values from it unchecked (fuzzing: 3.4 GB from 413 bytes). No current
+    // encoder writes them (Draco 1.3, 2018, moved to 2.3), so they are refused rather than parsed that deep.
+    return "KD-tree point cloud bitstream " + std::to_string(header.version_major) + "." +
+           std::to_string(header.version_minor) + " (before 2.3) is not supported";
+  }
   if (header.encoder_type == draco::POINT_CLOUD) return point_cloud_problem(buffer, size);
   if (header.encoder_type != draco::TRIANGULAR_MESH) return "";
   if (header.encoder_method == draco::MESH_SEQUENTIAL_ENCODING) return sequential_mesh_problem(buffer, version, size);
