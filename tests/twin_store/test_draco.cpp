@@ -136,8 +136,8 @@ TEST(TwinDracoCounts, CountsTheBytesCannotHoldAreRefusedBeforeDecoding) {
       {"vertices", draco_head(1, 1, {0, huge[0], huge[1], huge[2], huge[3], 1, 0, 1, 0})},
       // sequential mesh (method 0): faces 1, points 2^28 - 1
       {"points", draco_head(1, 0, {1, huge[0], huge[1], huge[2], huge[3]})},
-      // point cloud (geometry 0): int32 point count 2^28 - 1
-      {"points", draco_head(0, 1, {0xff, 0xff, 0xff, 0x0f})},
+      // sequential point cloud (geometry 0, method 0): int32 point count 2^28 - 1
+      {"points", draco_head(0, 0, {0xff, 0xff, 0xff, 0x0f})},
   };
   for (const auto& [what, bytes] : cases) {
     try {
@@ -148,6 +148,16 @@ TEST(TwinDracoCounts, CountsTheBytesCannotHoldAreRefusedBeforeDecoding) {
       EXPECT_NE(message.find("tiles/3_4.mesh.drc"), std::string::npos) << message;
       EXPECT_NE(message.find("claims 268435455 " + what), std::string::npos) << message;
     }
+  }
+  // A KD-tree point cloud older than 2.3 hides a second count in its attribute data: refused by version.
+  const std::vector<std::uint8_t> old_kd_tree = draco_head(0, 1, {4, 0, 0, 0});
+  try {
+    decode_draco(old_kd_tree.data(), old_kd_tree.size(), "tiles/3_4.points.drc");
+    ADD_FAILURE() << "an old KD-tree stream decoded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("KD-tree point cloud bitstream 2.2 (before 2.3) is not supported"),
+              std::string::npos)
+        << e.what();
   }
 }
 
