@@ -21,7 +21,7 @@ inline constexpr TopicSpec kImu{"twinslam/v1/imu", "twinslam::msg::Imu", QosFami
 inline constexpr TopicSpec kImage{"twinslam/v1/image", "twinslam::msg::Image", QosFamily::Sensor};
 inline constexpr TopicSpec kGnss{"twinslam/v1/gnss", "twinslam::msg::GnssFix", QosFamily::Sensor};
 inline constexpr TopicSpec kFeatures{"twinslam/v1/features", "twinslam::msg::FeatureFrame", QosFamily::Result};
-inline constexpr TopicSpec kOdometry{"twinslam/v1/odometry", "twinslam::msg::Odometry", QosFamily::Result};
+inline constexpr TopicSpec kOdometry{"twinslam/v2/odometry", "twinslam::msg::Odometry", QosFamily::Result};
 inline constexpr TopicSpec kLocalMap{"twinslam/v2/local_map", "twinslam::msg::LocalMap", QosFamily::Result};
 inline constexpr TopicSpec kRegistration{"twinslam/v3/registration", "twinslam::msg::Registration", QosFamily::Result};
 inline constexpr TopicSpec kTileRequest{"twinslam/v1/tile_request", "twinslam::msg::TileRequest", QosFamily::Control};
