@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -147,4 +148,54 @@ TEST(SensorFaults, BlackAndSaturatedFramesAreBridgedByTheImuAndReported) {
   expect_defined_behaviour("frame_dark",
                            "  frame_black: {at_s: 8, duration_s: 0.5}\n  frame_saturated: {at_s: 14, duration_s: 2.0}\n",
                            "frames_few_features");
+}
+
+// Missing twin tiles (a store whose tile files are gone around the flight): the tiles service reports each failed
+// tile (tiles_failed, one log line per tile), registration answers every LocalMap with a rejection and its reason, and
+// the estimator never declares a world alignment it has no twin for: no pose is output as ODOM_ALIGNED.
+TEST(SensorFaults, MissingTwinTilesAreReportedAndNoWorldPoseIsClaimedWithoutThem) {
+  const fs::path dataset = tiny_dataset();
+  const fs::path base = kWork / ("missing_tiles_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  const std::map<std::string, std::string> env{{"TWINSLAM_CACHE", (base / "cache").string()}};
+  const auto run = [&](const std::string& out) {
+    return test::run_process({test::bin("twinslam"), "run", dataset.string(), "--mode", "vio-twin", "--features",
+                              "--out", (base / out).string(), "--domain", std::to_string(test::test_domain())},
+                             env, std::chrono::seconds(180));
+  };
+  const auto first = run("intact");  // builds the store into the private cache
+  ASSERT_EQ(first.exit_code, 0) << first.out << first.err;
+  const auto intact = nlohmann::json::parse(read_text(base / "intact/run.json"));
+  ASSERT_FALSE(intact["aligned_from_stamp_ns"].is_null()) << "the intact twin aligns tiny";
+  std::size_t removed = 0;
+  for (const auto& store : fs::directory_iterator(base / "cache/twins")) {
+    for (const auto& tile : fs::directory_iterator(store.path() / "tiles")) {
+      const std::string name = tile.path().filename().string();
+      // The tiles around the origin, where tiny flies.
+      if (name.rfind("0_0.", 0) == 0 || name.rfind("-1_0.", 0) == 0 || name.rfind("0_-1.", 0) == 0 ||
+          name.rfind("-1_-1.", 0) == 0) {
+        fs::remove(tile.path());
+        ++removed;
+      }
+    }
+  }
+  ASSERT_GT(removed, 0u);
+  const auto second = run("missing");
+  ASSERT_EQ(second.exit_code, 0) << second.out << second.err;
+  const auto json = nlohmann::json::parse(read_text(base / "missing/run.json"));
+  EXPECT_EQ(json["status"], "ok");
+  for (const auto& [service, code] : json["services"].items()) EXPECT_EQ(code, 0) << service;
+  EXPECT_TRUE(json["aligned_from_stamp_ns"].is_null()) << json.dump();
+  const std::string tiles_log = read_text(base / "missing/logs/tiles.log");
+  EXPECT_NE(tiles_log.find("missing tile file"), std::string::npos) << tiles_log;
+  std::ifstream csv(base / "missing/registrations.csv");
+  std::string line;
+  std::getline(csv, line);  // header
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    EXPECT_EQ(line.substr(line.find(',') + 1, 2), "0,") << "accepted without its twin: " << line;
+  }
+  EXPECT_GT(rows, 0);
+  fs::remove_all(base);
 }

@@ -103,7 +103,11 @@ bool TilesNode::publish_tile(const twin::TileKey& key) {
   try {
     bytes = cache_.get(*info);
   } catch (const InputError& e) {
-    spdlog::warn("tile {}: {}", streamer_.grid().wire_key(key), e.what());
+    // Retried on every update that needs it (tiles_failed counts each try): the reason once per tile is enough.
+    if (warned_failed_.insert(streamer_.grid().wire_key(key)).second) {
+      spdlog::warn("tile {}: {} (retried while needed, counted as tiles_failed)", streamer_.grid().wire_key(key),
+                   e.what());
+    }
     return false;
   }
   msg::MapTile t;

@@ -6,6 +6,7 @@
 // tiles_latched (needed by a vehicle but already on the wire), tiles_failed, tiles_over_limit (max_tiles_on_wire
 // reached), and the inputs.
 #include <mutex>
+#include <set>
 #include <string>
 
 #include "twinslam/dds/heartbeat.hpp"
@@ -47,6 +48,7 @@ class TilesNode {
   TileCache cache_;
   twin::EnuFrame enu_;  // W at the twin's origin, for GNSS fixes
   dds::Writer<msg::MapTile> writer_;
+  std::set<std::string> warned_failed_;  // tiles whose failure was logged
 };
 
 }  // namespace twinslam::tiles
