@@ -121,13 +121,12 @@ void EstimatorNode::apply(const GlobalInput& input) {
     counters_.add("registration_in");
     std::array<double, 36> info{};
     std::copy(r->information().begin(), r->information().end(), info.begin());
-    if (r->status() == msg::REG_ACCEPTED) {
-      const std::string problem = registration_problem(dds::from_msg(r->correction_W()), geometry::from_row_major(info));
-      if (!problem.empty()) spdlog::warn("registration for keyframe {}: {}; not fused", r->keyframe_stamp_ns(), problem);
-    }
-    fusion_.on_registration(r->keyframe_stamp_ns(), r->status() == msg::REG_ACCEPTED, dds::from_msg(r->correction_W()),
-                            geometry::from_row_major(info),  // (rotation, translation) as on the wire
-                            r->readmitted());
+    const std::string problem =
+        fusion_.on_registration(r->keyframe_stamp_ns(), r->status() == msg::REG_ACCEPTED,
+                                dds::from_msg(r->correction_W()),
+                                geometry::from_row_major(info),  // (rotation, translation) as on the wire
+                                r->readmitted());
+    if (!problem.empty()) spdlog::warn("registration for keyframe {}: {}; not fused", r->keyframe_stamp_ns(), problem);
     return;
   }
   const auto& g = std::get<msg::GnssFix>(input);

@@ -192,23 +192,24 @@ bool GlobalFusion::realignment_helps(const WorldAlignmentSigmas& fit) const {
   return fit.yaw_rad < yaw_sigma_rad && fit.position_m < horizontal_sigma_m;
 }
 
-void GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted, const Eigen::Isometry3d& correction_W,
-                                   const Eigen::Matrix<double, 6, 6>& information, bool readmitted) {
+std::string GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted,
+                                          const Eigen::Isometry3d& correction_W,
+                                          const Eigen::Matrix<double, 6, 6>& information, bool readmitted) {
   ++counts_.registrations_in;
-  if (!accepted || !config_.fuse_registrations) return;
-  if (!registration_problem(correction_W, information).empty()) {
-    ++counts_.registrations_invalid;  // from the wire: never into the window (the node logs why)
-    return;
+  if (!accepted || !config_.fuse_registrations) return "";
+  if (std::string problem = registration_problem(correction_W, information); !problem.empty()) {
+    ++counts_.registrations_invalid;  // from the wire: never into the window
+    return problem;
   }
   if (!aligned_) {
     // Computed against a T_WL nobody had aligned yet (the identity guess): where its ICP converged means nothing.
     ++counts_.registrations_before_alignment;
-    return;
+    return "";
   }
   const auto it = published_.find(keyframe_stamp_ns);
   if (it == published_.end()) {
     ++counts_.registrations_unknown_keyframe;  // not a LocalMap this estimator published (or too old)
-    return;
+    return "";
   }
   const auto& [T_LB, T_WL] = it->second;
   if (readmitted && config_.realign_on_readmitted_registration && reopening_warranted(correction_W, T_WL * T_LB)) {
@@ -217,6 +218,7 @@ void GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool accepted
   provider_->add(map_registration_from_correction(keyframe_stamp_ns, T_WL * T_LB, correction_W, information), T_LB);
   ++counts_.registrations_accepted;
   last_accepted_ns_ = keyframe_stamp_ns;
+  return "";
 }
 
 bool GlobalFusion::reopening_warranted(const Eigen::Isometry3d& correction_W, const Eigen::Isometry3d& T_WB) const {

@@ -49,9 +49,10 @@ std::vector<ImuSample> covering(const std::vector<ImuSample>& imu, std::int64_t 
 // The longest step between the IMU samples that cover (t0, t1], counting the hold to t1 when the buffer ends first
 // (what covering() integrates) [s]; 0 without samples.
 double longest_imu_step_s(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1) {
-  const std::vector<ImuSample> nodes = covering(imu, t0, t1);
-  std::int64_t longest = 0;
-  for (std::size_t k = 1; k < nodes.size(); ++k) longest = std::max(longest, nodes[k].stamp_ns - nodes[k - 1].stamp_ns);
+  const auto span = covering_samples(imu, t0, t1);  // per frame: no copy of the samples
+  if (span.empty()) return 0.0;
+  std::int64_t longest = std::max<std::int64_t>(0, t1 - span.back().stamp_ns);
+  for (std::size_t k = 1; k < span.size(); ++k) longest = std::max(longest, span[k].stamp_ns - span[k - 1].stamp_ns);
   return 1e-9 * static_cast<double>(longest);
 }
 

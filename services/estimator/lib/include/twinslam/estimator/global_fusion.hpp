@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "twinslam/estimator/gnss_provider.hpp"
 #include "twinslam/estimator/loose_gnss_fusion.hpp"
@@ -91,8 +92,9 @@ class GlobalFusion {
   void on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, const Eigen::Matrix3d& cov_W);
   // A registration answering the keyframe at `keyframe_stamp_ns` (only accepted ones are fused). correction_W: dT of
   // eq. (3) as a transform of W; information: 6x6 (rotation, translation) about the keyframe position.
-  // readmitted: Registration.readmitted (see realign_on_readmitted_registration).
-  void on_registration(std::int64_t keyframe_stamp_ns, bool accepted, const Eigen::Isometry3d& correction_W,
+  // readmitted: Registration.readmitted (see realign_on_readmitted_registration). Returns why an accepted one cannot
+  // be fused (registration_problem: counted as registrations_invalid), "" otherwise.
+  std::string on_registration(std::int64_t keyframe_stamp_ns, bool accepted, const Eigen::Isometry3d& correction_W,
                        const Eigen::Matrix<double, 6, 6>& information, bool readmitted = false);
   // After each frame: remembers the estimate (GNSS pairing) and, for a keyframe, its published LocalMap pose.
   void after_frame(const FrameEstimate& estimate, const std::optional<LocalMapEstimate>& local_map);
