@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <random>
+#include <vector>
 
 #include "position_provider.hpp"
 #include "sliding_window_sim.hpp"
@@ -356,6 +357,69 @@ TEST(GlobalFusion, LooseGnssGraphPublishesItsOwnAlignmentAndLeavesTheWindowAlone
   EXPECT_EQ(fusion.gnss_counts().attached, 0u);  // nothing in the window
   EXPECT_GT(fusion.loose_counts().solves, 10u);
   EXPECT_GT(fusion.loose_counts().fixes_used, 40u);
+}
+
+// A registration service that goes wrong mid-flight (issue 15: "a registration correction 20 m off"): from 10 to 14 s
+// every accepted registration puts the keyframe 20 m east of the truth. The estimator's own gate refuses each one
+// against the covariance it published with the LocalMap and counts it, and a refused registration has no effect at all:
+// the estimate is the same, bit for bit, as when those registrations never arrive.
+struct GatedFlight {
+  std::vector<Eigen::Vector3d> p_W;  // the estimate in W per frame once declared
+  GlobalFusionCounts counts;
+  unsigned long long faulty = 0;  // registrations sent 20 m off
+  double worst_m = 0.0;           // largest position error in W
+};
+GatedFlight fly_with_faulty_registrations(const SimRun& run, bool send_faulty) {
+  SlidingWindowEstimator est(window_config(run));
+  GlobalFusionConfig g;
+  g.fuse_registrations = true;
+  g.initial_pose_yaw_sigma_deg = 1.0;  // declared at once
+  g.initial_pose_position_sigma_m = 0.5;
+  const auto& first = run.frames.front().truth;
+  const Eigen::Matrix3d R0 = first.q_LB.toRotationMatrix();
+  GlobalFusion fusion(est, g, InitialPose{first.p_L, std::atan2(R0(1, 0), R0(0, 0)) * 180.0 / M_PI});
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  information.diagonal() << Eigen::Vector3d::Constant(std::pow(180.0 / M_PI / 0.5, 2)), Eigen::Vector3d::Constant(25.0);
+  est.initialize_next_frame(first);
+  std::size_t imu_next = 0;
+  GatedFlight out;
+  for (const auto& f : run.frames) {
+    const double t = 1e-9 * static_cast<double>(f.stamp_ns - run.frames.front().stamp_ns);
+    feed_imu(run, est, imu_next, f.stamp_ns);
+    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
+    fusion.after_frame(e, est.local_map());
+    const auto& map = est.local_map();
+    if (map && est.world_aligned() && t >= 1.0) {
+      EXPECT_TRUE(fusion.published_covariance(map->keyframe_stamp_ns).has_value()) << "at " << t << " s";
+      const Eigen::Isometry3d truth = geometry::make_pose(f.truth.q_LB, f.truth.p_L);
+      Eigen::Isometry3d correction(truth * (map->T_WL * map->T_LB).inverse());
+      const bool fault = t >= 10.0 && t < 14.0;
+      if (fault) correction.pretranslate(Eigen::Vector3d(20.0, 0.0, 0.0));
+      out.faulty += fault;
+      if (!fault || send_faulty) {
+        const std::string why = fusion.on_registration(map->keyframe_stamp_ns, true, correction, information);
+        EXPECT_EQ(why.empty(), !fault) << "at " << t << " s: " << why;
+      }
+    }
+    if (fusion.world_declared()) {
+      out.p_W.push_back((est.world_alignment() * e.T_LB).translation());
+      out.worst_m = std::max(out.worst_m, (out.p_W.back() - f.truth.p_L).norm());
+    }
+  }
+  out.counts = fusion.counts();
+  return out;
+}
+
+TEST(GlobalFusion, RegistrationsTwentyMetresOffAreRefusedByTheEstimatorsOwnGate) {
+  const SimRun run = flight();
+  const GatedFlight faulty = fly_with_faulty_registrations(run, true);
+  EXPECT_GT(faulty.faulty, 3u);
+  EXPECT_EQ(faulty.counts.registrations_refused, faulty.faulty);
+  EXPECT_GT(faulty.counts.registrations_accepted, 20u);
+  EXPECT_LT(faulty.worst_m, 1.0);
+  const GatedFlight without = fly_with_faulty_registrations(run, false);
+  EXPECT_EQ(without.counts.registrations_refused, 0u);
+  EXPECT_EQ(faulty.p_W, without.p_W);  // refused = never arrived
 }
 
 TEST(GlobalFusion, LooseAndTightGnssExcludeEachOther) {

@@ -59,6 +59,29 @@ TEST(RegistrationConfig, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(message(""), "no error");
 }
 
+// faults.correction_offset (issue 15): a wrong registration on purpose, for the estimator's gate to meet.
+TEST(RegistrationConfig, TheCorrectionOffsetFaultParsesAndCountsFromTheFirstLocalMap) {
+  const RegistrationConfig c = parse_registration_config(
+      "faults:\n  correction_offset: {at_s: 23, duration_s: 3, east_m: 20}\n", "r.yaml");
+  const CorrectionFault& f = c.fault_correction_offset;
+  EXPECT_DOUBLE_EQ(f.at_s, 23.0);
+  const std::int64_t first = 1'000'000'000'500'000'000;
+  EXPECT_FALSE(f.contains(first + 22'900'000'000, first));
+  EXPECT_TRUE(f.contains(first + 23'000'000'000, first));
+  EXPECT_TRUE(f.contains(first + 25'900'000'000, first));
+  EXPECT_FALSE(f.contains(first + 26'000'000'000, first));
+  EXPECT_FALSE(RegistrationConfig{}.fault_correction_offset.contains(first + 23'000'000'000, first));  // off
+  EXPECT_EQ(message("faults:\n  correction_offset: {at_s: 1, east: 3}\n"),
+            "r.yaml:2: registration key 'faults.correction_offset.east': unknown key (known: at_s, duration_s, east_m)");
+  EXPECT_EQ(message("faults:\n  registration_nan: {at_s: 1}\n"),
+            "r.yaml:2: registration key 'faults.registration_nan': unknown key (known: correction_offset)");
+  EXPECT_EQ(message("faults: 3\n"), "r.yaml:1: registration key 'faults': expected a mapping (known: correction_offset)");
+  EXPECT_EQ(message("faults: {correction_offset: {at_s: 1, duration_s: -2}}\n"),
+            "r.yaml: registration key 'faults.correction_offset.duration_s': must be >= 0 s, got -2.000000");
+  EXPECT_EQ(message("faults: {correction_offset: {at_s: 1, east_m: twenty}}\n"),
+            "r.yaml:1: registration key 'faults.correction_offset.east_m': expected a number");
+}
+
 TEST(RegistrationConfig, MissingFileNamesIt) {
   try {
     load_registration_config("/nonexistent/registration.yaml");

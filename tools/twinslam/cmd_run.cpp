@@ -42,7 +42,8 @@ bool needs_gnss(const std::string& mode) { return fuses_gnss(mode) || fuses_gnss
 
 // RunRecord::odometry_faults() names the bits in this order.
 static_assert(msg::ODOM_FAULT_IMU_REJECTED == 1 && msg::ODOM_FAULT_IMU_GAP == 2 && msg::ODOM_FAULT_FEW_FEATURES == 4 &&
-              msg::ODOM_FAULT_FRAME_GAP == 8 && msg::ODOM_FAULT_GNSS_REJECTED == 16);
+              msg::ODOM_FAULT_FRAME_GAP == 8 && msg::ODOM_FAULT_GNSS_REJECTED == 16 &&
+              msg::ODOM_FAULT_REGISTRATION_REFUSED == 32);
 
 OdometryRecord to_record(const msg::Odometry& m) {
   const bool estimated = m.status() == msg::ODOM_TRACKING || m.status() == msg::ODOM_ALIGNED;

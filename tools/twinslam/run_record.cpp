@@ -64,7 +64,7 @@ RunRecord::Latency RunRecord::pipeline_latency() const {
 std::map<std::string, std::size_t> RunRecord::odometry_faults() const {
   // The names of the estimator's heartbeat counters for each ODOM_FAULT_* bit (Estimation.idl), bit 0 first.
   static const char* const kNames[] = {"imu_rejected", "frames_with_imu_gap", "frames_few_features", "frame_gaps",
-                                       "gnss_rejected"};
+                                       "gnss_rejected", "registrations_refused"};
   std::map<std::string, std::size_t> out;
   std::lock_guard lock(mutex_);
   for (const auto& [o, _] : odometry_) {

@@ -34,7 +34,6 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
       fusion_(estimator_, options.fusion, options.initial_pose),
       enu_(options.origin ? std::make_unique<twin::EnuFrame>(*options.origin) : nullptr),
       await_registration_(options.await_registration),
-      send_covariance_(options.fusion.fuse_registrations),
       registration_wait_(options.registration_wait),
       odometry_(node.writer<msg::Odometry>(dds::topics::kOdometry)),
       local_map_(node.writer<msg::LocalMap>(dds::topics::kLocalMap)),
@@ -82,6 +81,7 @@ void EstimatorNode::report_fusion() {
       {"registrations_before_alignment", f.registrations_before_alignment},
       {"registrations_unknown_keyframe", f.registrations_unknown_keyframe},
       {"registrations_invalid", f.registrations_invalid},
+      {"registrations_refused", f.registrations_refused},
       {"registration_wait_timeouts", worker_.expectations_timed_out()}};
   for (const auto& [name, value] : now) {
     unsigned long long& last = reported_[name];
@@ -121,12 +121,14 @@ void EstimatorNode::apply(const GlobalInput& input) {
     counters_.add("registration_in");
     std::array<double, 36> info{};
     std::copy(r->information().begin(), r->information().end(), info.begin());
+    const unsigned long long refused_before = fusion_.counts().registrations_refused;
     const std::string problem =
         fusion_.on_registration(r->keyframe_stamp_ns(), r->status() == msg::REG_ACCEPTED,
                                 dds::from_msg(r->correction_W()),
                                 geometry::from_row_major(info),  // (rotation, translation) as on the wire
                                 r->readmitted());
     if (!problem.empty()) spdlog::warn("registration for keyframe {}: {}; not fused", r->keyframe_stamp_ns(), problem);
+    if (fusion_.counts().registrations_refused > refused_before) faults_.fetch_or(msg::ODOM_FAULT_REGISTRATION_REFUSED);
     return;
   }
   const auto& g = std::get<msg::GnssFix>(input);
@@ -216,12 +218,9 @@ void EstimatorNode::process(const msg::FeatureFrame& m) {
         lm.landmarks().push_back(ml);
       }
       // Once in W, the keyframe's covariance lets registration gate a correction by the estimator's own uncertainty.
-      if (send_covariance_ && estimator_.world_aligned()) {
-        if (const auto cov = estimator_.pose_covariance_world(map->keyframe_stamp_ns)) {
-          const Eigen::Matrix<double, 6, 6> c = to_registration_order(*cov, (map->T_WL * map->T_LB).linear());
-          for (int r = 0; r < 6; ++r)
-            for (int k = 0; k < 6; ++k) lm.T_WB_covariance().push_back(c(r, k));
-        }
+      if (const auto c = fusion_.published_covariance(map->keyframe_stamp_ns)) {
+        for (int r = 0; r < 6; ++r)
+          for (int k = 0; k < 6; ++k) lm.T_WB_covariance().push_back((*c)(r, k));
       }
       local_map_.publish(lm);
       counters_.add("local_maps_out");

@@ -60,7 +60,6 @@ class EstimatorNode {
   GlobalFusion fusion_;               // likewise
   std::unique_ptr<twin::EnuFrame> enu_;  // lat/lon/alt -> W (null without an origin)
   bool await_registration_;
-  bool send_covariance_;  // LocalMap.T_WB_covariance: only when registrations are fused (it costs a dense inverse)
   std::map<std::string, unsigned long long> reported_;  // fusion counts already in the heartbeat
   // ODOM_FAULT_* bits met since the last Odometry: set from DDS callbacks and the worker, taken by the next Odometry.
   std::atomic<std::uint32_t> faults_{0};

@@ -111,8 +111,18 @@ bool usable_covariance(const Matrix6d& S) {
          Eigen::LLT<Matrix6d>(S).info() == Eigen::Success;
 }
 
+void RegistrationNode::inject_fault(const msg::LocalMap& m, RegistrationResult& r) {
+  const CorrectionFault& fault = options_.registration.fault_correction_offset;
+  const auto stamp = static_cast<std::int64_t>(m.keyframe_stamp_ns());
+  if (r.status != RegistrationStatus::kAccepted || !fault.contains(stamp, first_stamp_ns_.at(m.vehicle_id()))) return;
+  r.correction_W.pretranslate(Eigen::Vector3d(fault.east_m, 0.0, 0.0));
+  r.reason = "accepted; fault injected: correction moved " + std::to_string(fault.east_m) + " m east";
+  counters_.add("fault_correction_offset");
+}
+
 void RegistrationNode::serve(const Pending& p) {
   const msg::LocalMap& m = *p.map;
+  first_stamp_ns_.try_emplace(m.vehicle_id(), static_cast<std::int64_t>(m.keyframe_stamp_ns()));
   SourceInput source;
   source.T_LB = dds::from_msg(m.T_LB());
   source.T_WL = dds::from_msg(m.T_WL());
@@ -155,6 +165,7 @@ void RegistrationNode::serve(const Pending& p) {
         counters_.add("readmitted_persistent");
         out.readmitted(true);
       }
+      inject_fault(m, r);
       out.status(to_msg(r.status));
       out.reason(r.reason);
       out.correction_W(dds::to_msg(r.correction_W));

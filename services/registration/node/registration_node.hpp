@@ -51,6 +51,8 @@ class RegistrationNode {
   };
   void run();
   void serve(const Pending& p);
+  // faults.correction_offset (registration_config.hpp): moves an accepted correction east when its keyframe is due.
+  void inject_fault(const msg::LocalMap& m, RegistrationResult& r);
 
   dds::Node& node_;
   dds::Counters& counters_;
@@ -58,6 +60,7 @@ class RegistrationNode {
   dds::Writer<msg::Registration> writer_;
   WindowedTwin twin_;  // worker only
   std::map<std::string, PersistenceGate> persistence_;  // per vehicle, worker only
+  std::map<std::string, std::int64_t> first_stamp_ns_;  // per vehicle, worker only: its first LocalMap (faults)
   unsigned long long seq_ = 0;
 
   std::mutex mutex_;

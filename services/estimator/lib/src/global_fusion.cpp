@@ -59,6 +59,7 @@ void GlobalFusionConfig::validate() const {
     throw InputError("global fusion: fuse_gnss_loose needs align_from_gnss (the graph starts from that alignment)");
   }
   aligner.validate();
+  registration_gate.validate();
   loose.validate();
   registration.validate();
   gnss.validate();
@@ -175,6 +176,11 @@ void GlobalFusion::check_declaration() {
   aligner_.clear();
 }
 
+std::optional<Eigen::Matrix<double, 6, 6>> GlobalFusion::published_covariance(std::int64_t keyframe_stamp_ns) const {
+  const auto it = published_.find(keyframe_stamp_ns);
+  return it == published_.end() ? std::nullopt : it->second.covariance;
+}
+
 std::optional<Eigen::Isometry3d> GlobalFusion::output_T_WL() const {
   if (config_.fuse_gnss_loose && loose_.started()) return loose_.T_WL();
   return std::nullopt;
@@ -211,7 +217,13 @@ std::string GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool a
     ++counts_.registrations_unknown_keyframe;  // not a LocalMap this estimator published (or too old)
     return "";
   }
-  const auto& [T_LB, T_WL] = it->second;
+  const auto& [T_LB, T_WL, covariance] = it->second;
+  if (std::string refusal = registration_refusal(
+          config_.registration_gate, {correction_W, T_WL * T_LB, covariance, readmitted, world_declared()});
+      !refusal.empty()) {
+    ++counts_.registrations_refused;
+    return refusal;
+  }
   if (readmitted && config_.realign_on_readmitted_registration && reopening_warranted(correction_W, T_WL * T_LB)) {
     reopen_alignment(correction_W, T_WL, T_LB);
   }
@@ -277,7 +289,13 @@ void GlobalFusion::after_frame(const FrameEstimate& estimate, const std::optiona
     // GNSS terms join once the alignment is declared: on a provisional T_WL (heading sigma up to 30 deg) their
     // weak, correlation-inflated fixes would hold the heading where the first fit put it.
     gnss_provider_->set_active(world_declared());
-    published_[local_map->keyframe_stamp_ns] = {local_map->T_LB, local_map->T_WL};
+    Published& published = published_[local_map->keyframe_stamp_ns];
+    published = {local_map->T_LB, local_map->T_WL, std::nullopt};
+    if (config_.fuse_registrations && estimator_.world_aligned()) {
+      if (const auto cov = estimator_.pose_covariance_world(local_map->keyframe_stamp_ns)) {
+        published.covariance = to_registration_order(*cov, (local_map->T_WL * local_map->T_LB).linear());
+      }
+    }
     if (published_.size() > kPublishedKept) published_.erase(published_.begin());
   }
 }

@@ -99,6 +99,24 @@ void set(C& c, const Key& k, const std::string& file, const YAML::Node& node) {
   if (auto b = std::get_if<bool C::*>(&k.field)) c.*(*b) = read<bool>(file, k.name, node, "true or false");
 }
 
+// faults: {correction_offset: {at_s, duration_s, east_m}} (CorrectionFault).
+void parse_faults(const std::string& file, const YAML::Node& node, C& c) {
+  if (!node.IsMap()) bad(file, line_of(node), "faults", "expected a mapping (known: correction_offset)");
+  for (const auto& fault : node) {
+    const std::string name = fault.first.as<std::string>();
+    const std::string key = "faults." + name;
+    if (name != "correction_offset") bad(file, line_of(fault.first), key, "unknown key (known: correction_offset)");
+    if (!fault.second.IsMap()) bad(file, line_of(fault.second), key, "expected a mapping of at_s, duration_s, east_m");
+    CorrectionFault& f = c.fault_correction_offset;
+    for (const auto& field : fault.second) {
+      const std::string sub = field.first.as<std::string>();
+      double* target = sub == "at_s" ? &f.at_s : sub == "duration_s" ? &f.duration_s : sub == "east_m" ? &f.east_m : nullptr;
+      if (!target) bad(file, line_of(field.first), key + "." + sub, "unknown key (known: at_s, duration_s, east_m)");
+      *target = read<double>(file, key + "." + sub, field.second, "a number");
+    }
+  }
+}
+
 std::string known_keys() {
   std::string s;
   for (const Key& k : keys()) s += (s.empty() ? "" : ", ") + std::string(k.name);
@@ -177,8 +195,18 @@ void RegistrationConfig::validate(const std::string& s) const {
         acquisition_min_correction_deg);
   check(acquisition_corrections >= 1 && acquisition_corrections <= 100, s, "acquisition_corrections",
         "must lie in [1, 100]", acquisition_corrections);
+  const CorrectionFault& f = fault_correction_offset;
+  check(std::isfinite(f.at_s), s, "faults.correction_offset.at_s", "must be finite (< 0: off)", f.at_s);
+  check(nonneg(f.duration_s), s, "faults.correction_offset.duration_s", "must be >= 0 s", f.duration_s);
+  check(std::isfinite(f.east_m), s, "faults.correction_offset.east_m", "must be finite [m]", f.east_m);
   check(pos(acquisition_span_s) && acquisition_span_s <= 2.0 * persistent_span_s, s, "acquisition_span_s",
         "must be > 0 s and at most 2 x persistent_span_s (older votes are forgotten)", acquisition_span_s);
+}
+
+bool CorrectionFault::contains(std::int64_t keyframe_stamp_ns, std::int64_t first_stamp_ns) const {
+  if (at_s < 0.0) return false;
+  const double t_s = 1e-9 * static_cast<double>(keyframe_stamp_ns - first_stamp_ns);
+  return t_s >= at_s && t_s < at_s + duration_s;
 }
 
 RegistrationConfig parse_registration_config(const std::string& text, const std::string& file,
@@ -194,9 +222,13 @@ RegistrationConfig parse_registration_config(const std::string& text, const std:
   if (!root.IsMap()) throw InputError(where(file, 0, "expected a YAML mapping of registration keys"));
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>();
+    if (key == "faults") {
+      parse_faults(file, item.second, config);
+      continue;
+    }
     const Key* found = nullptr;
     for (const Key& k : keys()) found = (key == k.name) ? &k : found;
-    if (!found) bad(file, line_of(item.first), key, "unknown key (known: " + known_keys() + ")");
+    if (!found) bad(file, line_of(item.first), key, "unknown key (known: " + known_keys() + ", faults)");
     set(config, *found, file, item.second);
   }
   return config;

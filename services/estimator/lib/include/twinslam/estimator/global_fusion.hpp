@@ -22,6 +22,7 @@
 #include "twinslam/estimator/gnss_provider.hpp"
 #include "twinslam/estimator/loose_gnss_fusion.hpp"
 #include "twinslam/estimator/map_registration_provider.hpp"
+#include "twinslam/estimator/registration_gate.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
 #include "twinslam/estimator/world_aligner.hpp"
 
@@ -62,6 +63,7 @@ struct GlobalFusionConfig {
   // in L until declared) [deg]; 0: only a converged fit (aligner.converged_yaw_sigma_deg) starts it
   double provisional_yaw_sigma_deg = 30.0;
   WorldAlignerConfig aligner;
+  RegistrationGateConfig registration_gate;  // the estimator's own check of each registration (registration_gate.hpp)
   MapRegistrationProviderConfig registration;
   GnssProviderConfig gnss;
   LooseGnssFusionConfig loose;
@@ -80,7 +82,8 @@ struct GlobalFusionCounts {
                      realignments_declined = 0,  // after an outage, the GNSS fit was less certain than the estimate
                      provisional_alignments = 0,  // T_WL set (or replaced) from a fit not yet converged
                      registration_realignments = 0,  // T_WL re-opened by a re-admitted registration
-                     registrations_invalid = 0;  // accepted by registration but not fusable (registration_problem)
+                     registrations_invalid = 0,  // accepted by registration but not fusable (registration_problem)
+                     registrations_refused = 0;  // accepted by registration, refused by registration_gate.hpp
 };
 
 class GlobalFusion {
@@ -92,8 +95,9 @@ class GlobalFusion {
   void on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, const Eigen::Matrix3d& cov_W);
   // A registration answering the keyframe at `keyframe_stamp_ns` (only accepted ones are fused). correction_W: dT of
   // eq. (3) as a transform of W; information: 6x6 (rotation, translation) about the keyframe position.
-  // readmitted: Registration.readmitted (see realign_on_readmitted_registration). Returns why an accepted one cannot
-  // be fused (registration_problem: counted as registrations_invalid), "" otherwise.
+  // readmitted: Registration.readmitted (see realign_on_readmitted_registration). Returns why an accepted one is not
+  // fused: not fusable (registration_problem, counted as registrations_invalid) or refused by the estimator's own
+  // gate (registration_gate.hpp, counted as registrations_refused); "" otherwise.
   std::string on_registration(std::int64_t keyframe_stamp_ns, bool accepted, const Eigen::Isometry3d& correction_W,
                        const Eigen::Matrix<double, 6, 6>& information, bool readmitted = false);
   // After each frame: remembers the estimate (GNSS pairing) and, for a keyframe, its published LocalMap pose.
@@ -107,6 +111,10 @@ class GlobalFusion {
   // once started); nothing otherwise.
   std::optional<Eigen::Isometry3d> output_T_WL() const;
   std::optional<WorldAlignment4Dof> last_alignment() const { return last_alignment_; }
+  // The keyframe covariance published with the LocalMap of `keyframe_stamp_ns` (LocalMap.T_WB_covariance, in
+  // registration's order (dtheta_W, dp_W)): computed when a keyframe is published while T_WL is estimated in a
+  // twin mode; what the registration gates of both services test a correction against.
+  std::optional<Eigen::Matrix<double, 6, 6>> published_covariance(std::int64_t keyframe_stamp_ns) const;
   // T_WL is set and its heading is certain enough to call T_WB a pose in W (Odometry ODOM_ALIGNED).
   bool world_declared() const { return aligned_ && declared_; }
 
@@ -137,7 +145,11 @@ class GlobalFusion {
   std::optional<WorldAlignment4Dof> last_alignment_;
   std::optional<FrameEstimate> last_frame_;
   std::int64_t last_gnss_ns_ = -1;  // stamp of the previous fix (gnss_correlation_s)
-  std::map<std::int64_t, std::pair<Eigen::Isometry3d, Eigen::Isometry3d>> published_;  // stamp -> (T_LB, T_WL)
+  struct Published {
+    Eigen::Isometry3d T_LB, T_WL;
+    std::optional<Eigen::Matrix<double, 6, 6>> covariance;  // published_covariance()
+  };
+  std::map<std::int64_t, Published> published_;  // by keyframe stamp
   std::int64_t last_accepted_ns_ = -1;  // last accepted registration (or alignment) [sensor time]
   bool aligned_ = false;   // T_WL is set (provisionally or declared)
   bool declared_ = false;  // ... and certain enough to output poses in W

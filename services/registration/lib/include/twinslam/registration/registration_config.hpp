@@ -3,9 +3,23 @@
 // (eq. 2), the information weighting (eqs. 8-10 or the adaptive variant) and the acceptance tests.
 // validate() is the one place the values are checked; parse_registration_config reads the YAML form (the commented
 // default file is deploy/config/registration.yaml; every key there equals the default below).
+#include <cstdint>
 #include <string>
 
 namespace twinslam::registration {
+
+// A fault injected into the service's answers (issue 15: tests and demonstrations of what the estimator does with a
+// wrong registration). registration.yaml:  faults: {correction_offset: {at_s: 23, duration_s: 3, east_m: 20}}
+// Every registration accepted for a keyframe in [at_s, at_s + duration_s) seconds after the first LocalMap of the
+// vehicle that the service served
+// goes out with its correction moved east_m metres east (its reason says so). Off while at_s < 0.
+struct CorrectionFault {
+  double at_s = -1.0;       // [s] after the vehicle's first LocalMap keyframe; < 0: off
+  double duration_s = 0.0;  // [s]
+  double east_m = 20.0;     // [m] added to the correction's translation along W's x (east)
+  bool contains(std::int64_t keyframe_stamp_ns, std::int64_t first_stamp_ns) const;
+  bool operator==(const CorrectionFault&) const = default;
+};
 
 // How the 6x6 information of an accepted registration is weighted (information.hpp).
 enum class WeightMode {
@@ -95,6 +109,8 @@ struct RegistrationConfig {
   double acquisition_min_correction_deg = 1.0;  // [deg]
   int acquisition_corrections = 3;     // agreeing results (the held one included) that confirm it ...
   double acquisition_span_s = 3.0;     // [s] ... over at least this
+
+  CorrectionFault fault_correction_offset;  // YAML: faults: {correction_offset: {...}}
 
   bool operator==(const RegistrationConfig&) const = default;
 
