@@ -1,5 +1,7 @@
 #include "dataset_twin.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -120,10 +122,17 @@ fs::path dataset_twin_store(const DatasetGeo& geo, bool quiet) {
   twin::Mesh mesh_W;
   for (const auto& file : sources) mesh_W.append(twin::load_twin_source(file.string(), load));
   fs::create_directories(dir.parent_path());
-  const fs::path tmp = dir.string() + ".tmp";
+  // Per process: two runs of the same dataset may build it at once (parallel benches, ctest).
+  const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());
   fs::remove_all(tmp);
   twin::build_twin_store(mesh_W, geo.origin, store, tmp.string());
-  fs::rename(tmp, dir);  // whole store or nothing: a run killed mid-build leaves no half store under the key
+  std::error_code renamed;
+  fs::rename(tmp, dir, renamed);  // whole store or nothing: a run killed mid-build leaves no half store under the key
+  if (renamed) {
+    fs::remove_all(tmp);
+    // Another process finished the same store first: same content hash, same store.
+    if (!fs::exists(dir / "index.json")) throw InputError(where(dir.string(), 0, "cannot store the twin: " + renamed.message()));
+  }
   if (!quiet) std::printf("twin: built store %s (%s)\n", dir.string().c_str(), geo.twin_path.string().c_str());
   return dir;
 }

@@ -82,6 +82,9 @@ void EstimatorNode::report_fusion() {
       {"registrations_unknown_keyframe", f.registrations_unknown_keyframe},
       {"registrations_invalid", f.registrations_invalid},
       {"registrations_refused", f.registrations_refused},
+      {"gnss_jumps", fusion_.gnss_jump_counts().jumps},
+      {"gnss_jumps_undone", fusion_.gnss_jump_counts().undone},
+      {"gnss_jumps_held_out", fusion_.gnss_jump_counts().held_out},
       {"registration_wait_timeouts", worker_.expectations_timed_out()}};
   for (const auto& [name, value] : now) {
     unsigned long long& last = reported_[name];
@@ -137,7 +140,22 @@ void EstimatorNode::apply(const GlobalInput& input) {
   const Eigen::Vector3d p_W = enu_->from_lla(g.latitude_deg(), g.longitude_deg(), g.altitude_m());
   const Eigen::Matrix3d cov = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(g.covariance_enu_m2().data());
   if (p_W.allFinite() && cov.allFinite()) {
+    const GnssJumpCounts before = fusion_.gnss_jump_counts();
     fusion_.on_gnss(g.stamp_ns(), p_W, cov);
+    const GnssJumpCounts& after = fusion_.gnss_jump_counts();
+    if (after.refused > before.refused) {
+      counters_.add("gnss_rejected");
+      faults_.fetch_or(msg::ODOM_FAULT_GNSS_REJECTED);
+    }
+    if (after.jumps > before.jumps) {
+      spdlog::warn("GNSS fix at {}: a jump (its step exceeds the VIO's motion by more than fusion.gnss_jump_sigmas of "
+                   "the fixes' sigmas); fixes refused until it is undone or fusion.gnss_jump_hold_s passes",
+                   g.stamp_ns());
+    }
+    if (after.undone > before.undone) spdlog::info("GNSS fix at {}: the jump was undone; fixes used again", g.stamp_ns());
+    if (after.held_out > before.held_out) {
+      spdlog::warn("GNSS fix at {}: a jump lasted fusion.gnss_jump_hold_s; its level is used from now on", g.stamp_ns());
+    }
   } else {
     counters_.add("gnss_rejected");
     faults_.fetch_or(msg::ODOM_FAULT_GNSS_REJECTED);

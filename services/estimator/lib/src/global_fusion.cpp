@@ -60,6 +60,7 @@ void GlobalFusionConfig::validate() const {
   }
   aligner.validate();
   registration_gate.validate();
+  gnss_jump.validate();
   loose.validate();
   registration.validate();
   gnss.validate();
@@ -73,6 +74,7 @@ GlobalFusion::GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusion
       provider_(std::make_shared<MapRegistrationProvider>(config.registration)),
       gnss_provider_(std::make_shared<GnssProvider>(config.gnss)),
       aligner_(config.aligner),
+      gnss_jump_(config.gnss_jump),
       loose_(config.loose) {
   config_.validate();
   if (config_.fuse_registrations) estimator_.add_factor_provider(provider_);
@@ -81,6 +83,14 @@ GlobalFusion::GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusion
 
 void GlobalFusion::on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, const Eigen::Matrix3d& cov_W) {
   ++counts_.gnss_in;
+  // The body position at the fix's stamp from the last estimate and its velocity (the fix is at most one frame
+  // interval away: side inputs come with the first frame at or after their stamp).
+  std::optional<Eigen::Vector3d> p_L;
+  if (last_frame_ && last_frame_->status == EstimatorStatus::kTracking) {
+    const double dt = 1e-9 * static_cast<double>(stamp_ns - last_frame_->stamp_ns);
+    p_L = last_frame_->T_LB.translation() + last_frame_->v_L * dt;
+  }
+  if (!gnss_jump_.accept(stamp_ns, p_W, cov_W, p_L)) return;  // used for nothing, not even the correlation time
   const double interval_s = last_gnss_ns_ < 0 ? 0.0 : 1e-9 * static_cast<double>(stamp_ns - last_gnss_ns_);
   last_gnss_ns_ = stamp_ns;
   // Time-correlated errors: the covariance of one independent fix per gnss_correlation_s (fit and window terms).
@@ -94,12 +104,9 @@ void GlobalFusion::on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, co
     }
   }
   if (config_.fuse_gnss_loose) loose_.add_fix(stamp_ns, p_W, cov_eff);
-  if (!config_.align_from_gnss || !last_frame_ || last_frame_->status != EstimatorStatus::kTracking) return;
-  // The body position at the fix's stamp from the last estimate and its velocity (the fix is at most one frame
-  // interval away: side inputs come with the first frame at or after their stamp).
-  const double dt = 1e-9 * static_cast<double>(stamp_ns - last_frame_->stamp_ns);
+  if (!config_.align_from_gnss || !p_L) return;
   AlignmentPair pair;
-  pair.p_L = last_frame_->T_LB.translation() + last_frame_->v_L * dt;
+  pair.p_L = *p_L;
   pair.p_W = p_W;
   pair.cov_W = cov_eff;
   try {

@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 
+#include "twinslam/estimator/gnss_jump.hpp"
 #include "twinslam/estimator/gnss_provider.hpp"
 #include "twinslam/estimator/loose_gnss_fusion.hpp"
 #include "twinslam/estimator/map_registration_provider.hpp"
@@ -63,7 +64,8 @@ struct GlobalFusionConfig {
   // in L until declared) [deg]; 0: only a converged fit (aligner.converged_yaw_sigma_deg) starts it
   double provisional_yaw_sigma_deg = 30.0;
   WorldAlignerConfig aligner;
-  RegistrationGateConfig registration_gate;  // the estimator's own check of each registration (registration_gate.hpp)
+  RegistrationGateConfig registration_gate;
+  GnssJumpConfig gnss_jump;  // fixes after a jump are refused (gnss_jump.hpp)  // the estimator's own check of each registration (registration_gate.hpp)
   MapRegistrationProviderConfig registration;
   GnssProviderConfig gnss;
   LooseGnssFusionConfig loose;
@@ -91,7 +93,8 @@ class GlobalFusion {
   GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusionConfig& config,
                std::optional<InitialPose> initial_pose = std::nullopt);
 
-  // A GNSS fix at `stamp_ns`: p_W with covariance (ENU) [m, m^2].
+  // A GNSS fix at `stamp_ns`: p_W with covariance (ENU) [m, m^2]. A fix after a jump is refused (gnss_jump.hpp,
+  // counted in gnss_jump_counts()) and used for nothing.
   void on_gnss(std::int64_t stamp_ns, const Eigen::Vector3d& p_W, const Eigen::Matrix3d& cov_W);
   // A registration answering the keyframe at `keyframe_stamp_ns` (only accepted ones are fused). correction_W: dT of
   // eq. (3) as a transform of W; information: 6x6 (rotation, translation) about the keyframe position.
@@ -106,6 +109,7 @@ class GlobalFusion {
   const GlobalFusionCounts& counts() const { return counts_; }
   const MapRegistrationCounts& registration_counts() const { return provider_->counts(); }
   const GnssProviderCounts& gnss_counts() const { return gnss_provider_->counts(); }
+  const GnssJumpCounts& gnss_jump_counts() const { return gnss_jump_.counts(); }
   const LooseGnssFusionCounts& loose_counts() const { return loose_.counts(); }
   // The alignment to publish with the newest frame when it is not the window's: the loose graph's (fuse_gnss_loose,
   // once started); nothing otherwise.
@@ -141,6 +145,7 @@ class GlobalFusion {
   std::shared_ptr<MapRegistrationProvider> provider_;
   std::shared_ptr<GnssProvider> gnss_provider_;
   WorldAligner aligner_;
+  GnssJumpDetector gnss_jump_;
   LooseGnssFusion loose_;
   std::optional<WorldAlignment4Dof> last_alignment_;
   std::optional<FrameEstimate> last_frame_;
