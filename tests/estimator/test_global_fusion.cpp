@@ -200,6 +200,26 @@ TEST(GlobalFusion, CorrelatedGnssErrorsDoNotDeclareAnOverconfidentHeading) {
 }
 
 
+// Flies `run` (from its first true state) through `est` and `fusion`. For every LocalMap published once T_WL is set,
+// from 1 s on (the first one was published before an initial pose set T_WL), `on_keyframe(t, map, true T_WB)`; after
+// every frame `after(t, estimate, frame)`, which returns false to stop.
+void fly_registering(const SimRun& run, SlidingWindowEstimator& est, GlobalFusion& fusion,
+                     const std::function<void(double, const LocalMapEstimate&, const Eigen::Isometry3d&)>& on_keyframe,
+                     const std::function<bool(double, const FrameEstimate&, const testing::SimFrame&)>& after) {
+  est.initialize_next_frame(run.frames.front().truth);
+  std::size_t imu_next = 0;
+  for (const auto& f : run.frames) {
+    const double t = 1e-9 * static_cast<double>(f.stamp_ns - run.frames.front().stamp_ns);
+    feed_imu(run, est, imu_next, f.stamp_ns);
+    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
+    fusion.after_frame(e, est.local_map());
+    if (const auto& map = est.local_map(); map && est.world_aligned() && t >= 1.0) {
+      on_keyframe(t, *map, geometry::make_pose(f.truth.q_LB, f.truth.p_L));
+    }
+    if (!after(t, e, f)) return;
+  }
+}
+
 // A heading 4 deg off (or heading_error_deg), held by an overconfident prior (0.5 deg), and registrations that agree with it (identity
 // corrections: ICP settled near the wrong estimate) for the first 12 s. Then one registration of the true pose comes
 // with `readmitted` as registration's persistence gate sends it, and registrations of the true pose follow, accepted
@@ -222,34 +242,27 @@ Reopened fly_wrong_heading(const SimRun& run, bool realign, double heading_error
   GlobalFusion fusion(est, g, start);
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   information.diagonal() << Eigen::Vector3d::Constant(std::pow(180.0 / M_PI / 0.2, 2)), Eigen::Vector3d::Constant(100.0);
-  est.initialize_next_frame(first);
-  std::size_t imu_next = 0;
   std::optional<std::int64_t> readmitted_ns;
   Reopened out;
-  for (const auto& f : run.frames) {
-    const double t = 1e-9 * static_cast<double>(f.stamp_ns - run.frames.front().stamp_ns);
-    feed_imu(run, est, imu_next, f.stamp_ns);
-    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
-    fusion.after_frame(e, est.local_map());
-    const auto& map = est.local_map();
-    // From 1 s on: the first LocalMap was published before the initial pose set T_WL.
-    if (map && est.world_aligned() && t >= 1.0) {
-      const Eigen::Isometry3d truth = geometry::make_pose(f.truth.q_LB, f.truth.p_L);
-      const bool wrong = t < 12.0;
-      const bool readmit = !wrong && !readmitted_ns;
-      const Eigen::Isometry3d correction =
-          wrong ? Eigen::Isometry3d::Identity() : Eigen::Isometry3d(truth * (map->T_WL * map->T_LB).inverse());
-      const double dyaw_deg = std::abs(std::atan2(correction.linear()(1, 0), correction.linear()(0, 0))) * 180.0 / M_PI;
-      const bool plausible = dyaw_deg < 0.5 && (correction * truth.translation() - truth.translation()).norm() < 0.5;
-      fusion.on_registration(map->keyframe_stamp_ns, wrong || readmit || plausible, correction, information, readmit);
-      if (readmit) readmitted_ns = f.stamp_ns;
-    }
-    if (readmitted_ns && f.stamp_ns >= *readmitted_ns + 1'000'000'000LL) {
-      const Eigen::Matrix3d R = est.world_alignment().linear();
-      out.yaw_error_deg = std::abs(std::atan2(R(1, 0), R(0, 0))) * 180.0 / M_PI;
-      break;
-    }
-  }
+  fly_registering(
+      run, est, fusion,
+      [&](double t, const LocalMapEstimate& map, const Eigen::Isometry3d& truth) {
+        const bool wrong = t < 12.0;
+        const bool readmit = !wrong && !readmitted_ns;
+        const Eigen::Isometry3d correction =
+            wrong ? Eigen::Isometry3d::Identity() : Eigen::Isometry3d(truth * (map.T_WL * map.T_LB).inverse());
+        const double dyaw_deg =
+            std::abs(std::atan2(correction.linear()(1, 0), correction.linear()(0, 0))) * 180.0 / M_PI;
+        const bool plausible = dyaw_deg < 0.5 && (correction * truth.translation() - truth.translation()).norm() < 0.5;
+        fusion.on_registration(map.keyframe_stamp_ns, wrong || readmit || plausible, correction, information, readmit);
+        if (readmit) readmitted_ns = map.keyframe_stamp_ns;
+      },
+      [&](double, const FrameEstimate&, const testing::SimFrame& f) {
+        if (!readmitted_ns || f.stamp_ns < *readmitted_ns + 1'000'000'000LL) return true;
+        const Eigen::Matrix3d R = est.world_alignment().linear();
+        out.yaw_error_deg = std::abs(std::atan2(R(1, 0), R(0, 0))) * 180.0 / M_PI;
+        return false;
+      });
   out.counts = fusion.counts();
   out.registrations = fusion.registration_counts();
   return out;
@@ -380,32 +393,26 @@ GatedFlight fly_with_faulty_registrations(const SimRun& run, bool send_faulty) {
   GlobalFusion fusion(est, g, InitialPose{first.p_L, std::atan2(R0(1, 0), R0(0, 0)) * 180.0 / M_PI});
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   information.diagonal() << Eigen::Vector3d::Constant(std::pow(180.0 / M_PI / 0.5, 2)), Eigen::Vector3d::Constant(25.0);
-  est.initialize_next_frame(first);
-  std::size_t imu_next = 0;
   GatedFlight out;
-  for (const auto& f : run.frames) {
-    const double t = 1e-9 * static_cast<double>(f.stamp_ns - run.frames.front().stamp_ns);
-    feed_imu(run, est, imu_next, f.stamp_ns);
-    const FrameEstimate e = est.add_frame(f.stamp_ns, f.features);
-    fusion.after_frame(e, est.local_map());
-    const auto& map = est.local_map();
-    if (map && est.world_aligned() && t >= 1.0) {
-      EXPECT_TRUE(fusion.published_covariance(map->keyframe_stamp_ns).has_value()) << "at " << t << " s";
-      const Eigen::Isometry3d truth = geometry::make_pose(f.truth.q_LB, f.truth.p_L);
-      Eigen::Isometry3d correction(truth * (map->T_WL * map->T_LB).inverse());
-      const bool fault = t >= 10.0 && t < 14.0;
-      if (fault) correction.pretranslate(Eigen::Vector3d(20.0, 0.0, 0.0));
-      out.faulty += fault;
-      if (!fault || send_faulty) {
-        const std::string why = fusion.on_registration(map->keyframe_stamp_ns, true, correction, information);
+  fly_registering(
+      run, est, fusion,
+      [&](double t, const LocalMapEstimate& map, const Eigen::Isometry3d& truth) {
+        EXPECT_TRUE(fusion.published_covariance(map.keyframe_stamp_ns).has_value()) << "at " << t << " s";
+        Eigen::Isometry3d correction(truth * (map.T_WL * map.T_LB).inverse());
+        const bool fault = t >= 10.0 && t < 14.0;
+        if (fault) correction.pretranslate(Eigen::Vector3d(20.0, 0.0, 0.0));
+        out.faulty += fault;
+        if (fault && !send_faulty) return;
+        const std::string why = fusion.on_registration(map.keyframe_stamp_ns, true, correction, information);
         EXPECT_EQ(why.empty(), !fault) << "at " << t << " s: " << why;
-      }
-    }
-    if (fusion.world_declared()) {
-      out.p_W.push_back((est.world_alignment() * e.T_LB).translation());
-      out.worst_m = std::max(out.worst_m, (out.p_W.back() - f.truth.p_L).norm());
-    }
-  }
+      },
+      [&](double, const FrameEstimate& e, const testing::SimFrame& f) {
+        if (fusion.world_declared()) {
+          out.p_W.push_back((est.world_alignment() * e.T_LB).translation());
+          out.worst_m = std::max(out.worst_m, (out.p_W.back() - f.truth.p_L).norm());
+        }
+        return true;
+      });
   out.counts = fusion.counts();
   return out;
 }

@@ -171,6 +171,16 @@ TEST(SlidingWindow, ReportsInitializingWithoutRestAndRejectsBadInput) {
   EXPECT_TRUE(last.init_timed_out);
   EXPECT_THROW(est.add_frame(run.frames.back().stamp_ns, {}), InputError);
   EXPECT_THROW(est.add_imu(run.imu.front()), InputError);
+  // Finite but beyond any IMU's range (a corrupt sample): refused before it can overflow the state.
+  ImuSample wild = run.imu.back();
+  wild.stamp_ns += 1'000'000;
+  wild.accel_B.x() = 1e100;
+  try {
+    est.add_imu(wild);
+    ADD_FAILURE() << "accepted an acceleration of 1e100 m/s^2";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond any IMU's range"), std::string::npos) << e.what();
+  }
   c.window_keyframes = 1;
   EXPECT_THROW(SlidingWindowEstimator{c}, InputError);
 }

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <mutex>
 
+#include "local_map_message.hpp"
 #include "registration_node.hpp"
 #include "subprocess.hpp"
 #include "synthetic_twin.hpp"
@@ -114,21 +115,6 @@ TEST(WindowedTwin, PrefetchesTheRingAroundTheWindowAFewTilesPerUpdateNearestFirs
 }
 
 // The LocalMap the estimator would send for this source cloud (quality 1, no covariance).
-msg::LocalMap local_map(const std::string& vehicle, std::int64_t stamp_ns, const SourceInput& src) {
-  msg::LocalMap lm;
-  lm.vehicle_id(vehicle);
-  lm.keyframe_stamp_ns(stamp_ns);
-  lm.T_LB(dds::to_msg(src.T_LB));
-  lm.T_WL(dds::to_msg(src.T_WL));
-  for (const auto& l : src.landmarks) {
-    msg::Landmark x;
-    x.p_L(dds::to_msg(l.p_L));
-    x.quality(1.0f);
-    lm.landmarks().push_back(x);
-  }
-  return lm;
-}
-
 // Sets the keyframe covariance the estimator sends: sigma_deg on rotation, sigma_m on translation (rotation first).
 void set_covariance(msg::LocalMap& lm, double sigma_deg, double sigma_m, double off_diagonal = 0.0) {
   lm.T_WB_covariance().clear();
@@ -191,7 +177,7 @@ TEST_F(RegistrationNodeTest, AnswersALocalMapWithTheCorrectionThatUndoesItsAlign
   const Eigen::Vector3d body = test::kCentre + Eigen::Vector3d(0, -45, 8);
   const Eigen::Isometry3d error = test::offset_about(body, Eigen::Vector3d(0.2, 0.1, 1), 3.0, {0.6, -0.7, 0.4});
   const SourceInput src = test::make_source(test::sample_noisy(test::city_surfaces(), 600, 0.1, 3), error, body);
-  const msg::LocalMap lm = local_map("uav7", 123, src);
+  const msg::LocalMap lm = test::local_map("uav7", 123, src);
   maps_out.publish(lm);
   // And one far from every tile.
   msg::LocalMap far = lm;
@@ -251,7 +237,7 @@ TEST_F(RegistrationNodeTest, ACorrectionRefusedForALandmarkHorizonIsSentAsReadmi
   const SourceInput src = test::make_source(test::sample_noisy(test::city_surfaces(), 600, 0.1, 3), error, body);
   constexpr std::int64_t kStep_ns = 2'500'000'000;
   for (std::int64_t k = 0; k < 5; ++k) {
-    msg::LocalMap lm = local_map("uav3", k * kStep_ns, src);
+    msg::LocalMap lm = test::local_map("uav3", k * kStep_ns, src);
     set_covariance(lm, 0.2, 0.05);
     maps_out.publish(lm);
     // One at a time: the service keeps only the newest LocalMap of a vehicle while it is busy.

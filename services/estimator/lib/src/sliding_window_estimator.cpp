@@ -17,6 +17,13 @@
 namespace twinslam::estimator {
 namespace {
 
+constexpr double kMaxGyro_radps = 1e3, kMaxAccel_mps2 = 1e4;  // add_imu: no IMU measures beyond these
+
+bool window_finite_frame(const WindowFrame& f) {
+  const auto finite = [](double v) { return std::isfinite(v); };
+  return std::all_of(f.pose.begin(), f.pose.end(), finite) && std::all_of(f.speed_bias.begin(), f.speed_bias.end(), finite);
+}
+
 ImuState frame_state(const WindowFrame& f) { return unpack(f.pose.data(), f.speed_bias.data()); }
 
 FrameEstimate make_estimate(const WindowState& s, const WindowFrame& f, EstimatorStatus status) {
@@ -127,6 +134,21 @@ double feature_motion_px(const WindowState& s, const std::vector<FeatureBearing>
   return n > 0 ? s.config.focal_px * sum / n : std::numeric_limits<double>::infinity();
 }
 
+// Every parameter block Ceres would get is finite. Ceres aborts the process (a CHECK) on a non-finite one, so a window
+// that is not (found by the dds_estimator fuzz target) restarts as after divergence instead of reaching it.
+bool window_finite(const WindowState& s) {
+  const auto finite = [](const auto& block) {
+    return std::all_of(block.begin(), block.end(), [](double v) { return std::isfinite(v); });
+  };
+  for (const auto& f : s.frames) {
+    if (!window_finite_frame(*f)) return false;
+  }
+  for (const auto& [id, lm] : s.landmarks) {
+    if (!std::isfinite(lm.rho)) return false;
+  }
+  return finite(s.T_WL);
+}
+
 bool diverged(const WindowState& s, const SolveSummary& summary) {
   const auto& c = s.config;
   for (const auto& f : s.frames) {
@@ -233,6 +255,12 @@ void SlidingWindowEstimator::add_imu(const ImuSample& sample) {
   if (!sample.gyro_B.allFinite() || !sample.accel_B.allFinite()) {
     throw InputError("imu sample at " + std::to_string(sample.stamp_ns) + " ns: not finite");
   }
+  // Beyond what any IMU measures (MEMS ranges end near 70 rad/s and a few hundred g): corrupt, and integrating it
+  // would overflow the state.
+  if (sample.gyro_B.norm() > kMaxGyro_radps || sample.accel_B.norm() > kMaxAccel_mps2) {
+    throw InputError("imu sample at " + std::to_string(sample.stamp_ns) + " ns: beyond any IMU's range (" +
+                     std::to_string(kMaxGyro_radps) + " rad/s, " + std::to_string(kMaxAccel_mps2) + " m/s^2)");
+  }
   if (!s_->imu.empty() && sample.stamp_ns <= s_->imu.back().stamp_ns) {
     throw InputError("imu sample at " + std::to_string(sample.stamp_ns) + " ns: timestamp not increasing");
   }
@@ -334,6 +362,13 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
   s.frames.push_back(std::move(cur));
 
   triangulate_new_landmarks(s);
+  if (!window_finite(s)) {
+    const WindowFrame& shown = window_finite_frame(*s.frames.back()) ? *s.frames.back() : kf;
+    FrameEstimate e = make_estimate(s, shown, EstimatorStatus::kReinitializing);
+    e.stamp_ns = stamp_ns;
+    reset(s);
+    return finish(e);
+  }
   const SolveSummary summary = solve_window(s);
   if (diverged(s, summary)) {
     FrameEstimate e = make_estimate(s, *s.frames.back(), EstimatorStatus::kReinitializing);

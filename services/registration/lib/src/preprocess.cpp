@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "kdtree.hpp"
+#include "twinslam/registration/twin_index.hpp"
 #include "twinslam/core/error.hpp"
 
 namespace twinslam::registration {
@@ -16,9 +17,16 @@ void check_input(const SourceInput& in) {
   if (!in.T_WL.matrix().allFinite() || !in.T_LB.matrix().allFinite()) {
     throw InputError("registration source: T_WL or T_LB is not finite");
   }
+  const auto beyond_world = [](const Eigen::Vector3d& p_W) { return p_W.cwiseAbs().maxCoeff() > kMaxWorldCoordinate_m; };
+  if (beyond_world((in.T_WL * in.T_LB).translation())) {
+    throw InputError("registration source: keyframe beyond the world's extent (1e7 m from W's origin)");
+  }
   for (std::size_t i = 0; i < in.landmarks.size(); ++i) {
     const Landmark& l = in.landmarks[i];
     if (!l.p_L.allFinite()) throw InputError("registration source: landmark " + std::to_string(i) + " is not finite");
+    if (beyond_world(in.T_WL * l.p_L)) {
+      throw InputError("registration source: landmark " + std::to_string(i) + " beyond the world's extent (1e7 m)");
+    }
     if (!(l.quality >= 0.0 && l.quality <= 1.0)) {
       throw InputError("registration source: landmark " + std::to_string(i) + " quality " + std::to_string(l.quality) +
                        " outside [0, 1]");

@@ -111,6 +111,9 @@ std::size_t TwinTileIndex::memory_bytes() const {
 
 std::optional<TwinMatch> TwinTileIndex::nearest(const Eigen::Vector3d& p_W, double max_dist_m) const {
   if (!p_W.allFinite() || !(max_dist_m > 0.0)) return std::nullopt;
+  // Beyond the world no tile can be; and the tile numbers below must fit an int.
+  if (p_W.head<2>().cwiseAbs().maxCoeff() > kMaxWorldCoordinate_m) return std::nullopt;
+  max_dist_m = std::min(max_dist_m, kMaxWorldCoordinate_m);
   const double max_sq = max_dist_m * max_dist_m;
   Best best;
   // The tile holding the query first: its nearest point usually bounds the search so tightly that no other tile

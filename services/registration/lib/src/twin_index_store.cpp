@@ -40,6 +40,9 @@ void add_tile_from_draco(TwinTileIndex& index, const twin::TileKey& key, const s
 
 std::vector<twin::TileKey> tiles_in_window(const twin::TwinIndex& store, const Eigen::Vector3d& p_W, double window_m) {
   if (!p_W.allFinite() || !(window_m > 0.0)) throw InputError("tile window: non-finite position or window <= 0 m");
+  if (p_W.head<2>().cwiseAbs().maxCoeff() > kMaxWorldCoordinate_m || window_m > kMaxWorldCoordinate_m) {
+    throw InputError("tile window: position or window beyond the world's extent (1e7 m)");
+  }
   const double half = 0.5 * window_m, s = store.tile_size_m;
   const int ix0 = static_cast<int>(std::floor((p_W.x() - half) / s));
   const int ix1 = static_cast<int>(std::floor((p_W.x() + half) / s));

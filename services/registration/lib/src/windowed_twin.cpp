@@ -58,7 +58,7 @@ void WindowedTwin::evict() {
     for (auto it = tiles_.begin(); it != tiles_.end(); ++it) {
       double d = std::numeric_limits<double>::infinity();
       for (const auto& [id, p] : vehicles_) d = std::min(d, horizontal_distance(it->second.bounds_W, p));
-      if (d > worst_d) worst_d = d, worst = it;
+      if (worst == tiles_.end() || d > worst_d) worst_d = d, worst = it;  // NaN bounds: still evictable
     }
     index_.remove_tile(worst->first);
     tiles_.erase(worst);
@@ -67,6 +67,9 @@ void WindowedTwin::evict() {
 
 WindowedTwinStats WindowedTwin::update(const std::string& vehicle, const Eigen::Vector3d& p_W) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (!p_W.allFinite() || p_W.cwiseAbs().maxCoeff() > kMaxWorldCoordinate_m) {
+    throw InputError("vehicle position not finite or beyond the world's extent (1e7 m from W's origin)");
+  }
   vehicles_[vehicle] = p_W;
   WindowedTwinStats stats;
   std::string failed;

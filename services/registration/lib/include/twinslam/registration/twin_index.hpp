@@ -27,6 +27,10 @@ struct TwinMatch {
   double distance_m = 0.0;  // |p_W - query| [m]
 };
 
+// W is a local ENU frame: no twin, vehicle or landmark lies farther than this from its origin. Coordinates beyond it
+// (a corrupt or hostile sample) are refused before they become tile numbers (ints) or voxel keys.
+inline constexpr double kMaxWorldCoordinate_m = 1e7;
+
 class TwinTileIndex {
  public:
   explicit TwinTileIndex(double tile_size_m = 50.0);  // the store's tile side [m]; InputError if not > 0
