@@ -1,7 +1,5 @@
 #include "estimator_handler.hpp"
 
-#include "twinslam/estimator/map_registration_factor.hpp"
-
 #include <algorithm>
 #include <array>
 

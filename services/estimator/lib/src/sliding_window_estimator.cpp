@@ -19,10 +19,12 @@ namespace {
 
 constexpr double kMaxGyro_radps = 1e3, kMaxAccel_mps2 = 1e4;  // add_imu: no IMU measures beyond these
 
-bool window_finite_frame(const WindowFrame& f) {
-  const auto finite = [](double v) { return std::isfinite(v); };
-  return std::all_of(f.pose.begin(), f.pose.end(), finite) && std::all_of(f.speed_bias.begin(), f.speed_bias.end(), finite);
+template <class Block>
+bool all_finite(const Block& block) {
+  return std::all_of(block.begin(), block.end(), [](double v) { return std::isfinite(v); });
 }
+
+bool window_finite_frame(const WindowFrame& f) { return all_finite(f.pose) && all_finite(f.speed_bias); }
 
 ImuState frame_state(const WindowFrame& f) { return unpack(f.pose.data(), f.speed_bias.data()); }
 
@@ -137,16 +139,13 @@ double feature_motion_px(const WindowState& s, const std::vector<FeatureBearing>
 // Every parameter block Ceres would get is finite. Ceres aborts the process (a CHECK) on a non-finite one, so a window
 // that is not (found by the dds_estimator fuzz target) restarts as after divergence instead of reaching it.
 bool window_finite(const WindowState& s) {
-  const auto finite = [](const auto& block) {
-    return std::all_of(block.begin(), block.end(), [](double v) { return std::isfinite(v); });
-  };
   for (const auto& f : s.frames) {
     if (!window_finite_frame(*f)) return false;
   }
   for (const auto& [id, lm] : s.landmarks) {
     if (!std::isfinite(lm.rho)) return false;
   }
-  return finite(s.T_WL);
+  return all_finite(s.T_WL);
 }
 
 bool diverged(const WindowState& s, const SolveSummary& summary) {

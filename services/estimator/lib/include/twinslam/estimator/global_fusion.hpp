@@ -64,8 +64,8 @@ struct GlobalFusionConfig {
   // in L until declared) [deg]; 0: only a converged fit (aligner.converged_yaw_sigma_deg) starts it
   double provisional_yaw_sigma_deg = 30.0;
   WorldAlignerConfig aligner;
-  RegistrationGateConfig registration_gate;
-  GnssJumpConfig gnss_jump;  // fixes after a jump are refused (gnss_jump.hpp)  // the estimator's own check of each registration (registration_gate.hpp)
+  RegistrationGateConfig registration_gate;  // the estimator's own check of each registration (registration_gate.hpp)
+  GnssJumpConfig gnss_jump;                  // fixes after a jump are refused (gnss_jump.hpp)
   MapRegistrationProviderConfig registration;
   GnssProviderConfig gnss;
   LooseGnssFusionConfig loose;

@@ -10,9 +10,9 @@ namespace twinslam::registration {
 
 // A fault injected into the service's answers (issue 15: tests and demonstrations of what the estimator does with a
 // wrong registration). registration.yaml:  faults: {correction_offset: {at_s: 23, duration_s: 3, east_m: 20}}
-// Every registration accepted for a keyframe in [at_s, at_s + duration_s) seconds after the first LocalMap of the
-// vehicle that the service served
-// goes out with its correction moved east_m metres east (its reason says so). Off while at_s < 0.
+// Every registration accepted for a keyframe in [at_s, at_s + duration_s) seconds after the first LocalMap the service
+// served for that vehicle goes out with its correction moved east_m metres east (its reason says so). Off while
+// at_s < 0.
 struct CorrectionFault {
   double at_s = -1.0;       // [s] after the vehicle's first LocalMap keyframe; < 0: off
   double duration_s = 0.0;  // [s]
