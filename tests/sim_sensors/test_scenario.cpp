@@ -78,6 +78,11 @@ TEST(SimScenario, ErrorsNameFileAndKey) {
             std::string::npos);
   EXPECT_NE(error_of("seed: [1\n").find("scen.yaml:"), std::string::npos);  // malformed YAML
   EXPECT_NE(error_of("base: nowhere\n").find("scen.yaml:1: base: unknown scenario 'nowhere'"), std::string::npos);
+  EXPECT_EQ(error_of("city:\n  blocks: repeated\n"),
+            "scen.yaml:2: city.blocks: 'repeated' is not one of identical | varied");
+  EXPECT_NE(error_of("city: {source: osm, path: a.osm, blocks: identical}\n")
+                .find("city.blocks: identical blocks need the procedural city"),
+            std::string::npos);
 }
 
 TEST(SimScenario, ShiftedBuildingsErrorsNameTheKey) {

@@ -1,5 +1,7 @@
 // Procedural city: deterministic per seed, one clearly tallest building at the centre, twin-less details present.
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -94,6 +96,41 @@ TEST(SimWorldCity, HintsDescribeTheStreetsParksAndFootprints) {
   EXPECT_LE(big.hints.furniture_top_m, 10.0);
 }
 
+// The 3D-aliased city (issue 15, item 4): every block but the tower's holds the same buildings at the same place
+// within it, so a street looks the same one block pitch further on; the default city's blocks differ.
+std::map<std::pair<int, int>, std::vector<std::vector<double>>> buildings_per_block(const City& city) {
+  const double pitch = city.layout.block_size_m + city.layout.street_width_m;
+  std::map<std::pair<int, int>, std::vector<std::vector<double>>> out;
+  for (const Building& b : city.buildings) {
+    if (b.id == city.tallest_id) continue;
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const auto& p : b.outline_W) c += p / static_cast<double>(b.outline_W.size());
+    const int i = static_cast<int>(std::lround(c.x() / pitch)), j = static_cast<int>(std::lround(c.y() / pitch));
+    std::vector<double> shape{b.height_m, b.top_m};  // the outline relative to its block's centre, to the mm
+    for (const auto& p : b.outline_W)
+      for (const double v : {p.x() - i * pitch, p.y() - j * pitch}) shape.push_back(std::round(v * 1000) / 1000);
+    out[{i, j}].push_back(shape);
+  }
+  for (auto& [block, shapes] : out) std::sort(shapes.begin(), shapes.end());
+  return out;
+}
+
+TEST(SimWorldCity, IdenticalBlocksRepeatOneBlockOverTheWholeGrid) {
+  CityConfig config;
+  config.size_m = 400;
+  config.blocks = "identical";
+  const auto blocks = buildings_per_block(build_city(config, 7));
+  ASSERT_EQ(blocks.size(), 24u);  // 5 x 5 blocks, the tower's aside: no parks
+  for (const auto& [block, shapes] : blocks) EXPECT_EQ(shapes, blocks.begin()->second);
+  EXPECT_EQ(build_city(config, 7).mesh.p_W, build_city(config, 7).mesh.p_W);
+
+  config.blocks = "varied";
+  const auto varied = buildings_per_block(build_city(config, 7));
+  int same = 0;
+  for (const auto& [block, shapes] : varied) same += shapes == varied.begin()->second;
+  EXPECT_LT(same, 3);
+}
+
 TEST(SimWorldCity, BadConfigIsInputError) {
   CityConfig config;
   config.size_m = 10;
@@ -103,6 +140,9 @@ TEST(SimWorldCity, BadConfigIsInputError) {
   EXPECT_THROW(build_city(config, 1), InputError);
   config = CityConfig{};
   config.source = "osm";
+  EXPECT_THROW(build_city(config, 1), InputError);
+  config = CityConfig{};
+  config.blocks = "repeated";
   EXPECT_THROW(build_city(config, 1), InputError);
 }
 

@@ -174,7 +174,7 @@ TEST(SimCityLong, TwinChangesHitBuildingsAlongTheRoute) {
   ASSERT_GT(c.scenario.twin.missing_buildings, 0);
   ASSERT_GT(c.scenario.twin.shifted_buildings.count, 0);
   const Twin twin = derive_twin(c.city, c.scenario.twin, c.scenario.seed,
-                                twin_change_candidates(c.scenario, c.city.hints, c.flight));
+                                twin_change_candidates(c.city.hints, c.flight));
   std::vector<int> changed = twin.missing_building_ids;
   changed.insert(changed.end(), twin.shifted_building_ids.begin(), twin.shifted_building_ids.end());
   ASSERT_EQ(changed.size(), static_cast<std::size_t>(c.scenario.twin.missing_buildings +

@@ -72,6 +72,25 @@ TEST(SimWorldTwin, AddedBuildingsStandInEmptyLots) {
   }
 }
 
+// The flight must meet the building the twin invents (issue 15's wrong-twin scenarios): given the lots it passes,
+// an added building stands in one of them, whatever the seed.
+TEST(SimWorldTwin, AddedBuildingsGoToTheLotsTheFlightPassesFirst) {
+  ASSERT_GE(world().empty_lots_W.size(), 3u);
+  TwinConfig config;
+  config.added_buildings = 1;
+  const int seen = static_cast<int>(world().empty_lots_W.size()) - 2;
+  const Eigen::Vector4d& lot = world().empty_lots_W[seen];
+  for (const std::uint64_t seed : {1, 2, 3, 4, 5}) {
+    const Twin twin = derive_twin(world(), config, seed, {}, {seen});
+    ASSERT_EQ(twin.added_building_ids.size(), 1u);
+    for (std::size_t i = 0; i < twin.mesh.num_triangles(); ++i) {
+      if (twin.mesh.building_id[i] != twin.added_building_ids[0]) continue;
+      const Eigen::Vector3d p = twin.mesh.p_W[twin.mesh.triangles[i][0]];
+      ASSERT_TRUE(p.x() >= lot[0] && p.x() <= lot[2] && p.y() >= lot[1] && p.y() <= lot[3]) << "seed " << seed;
+    }
+  }
+}
+
 TEST(SimWorldTwin, OffsetTranslatesTheWholeTwin) {
   TwinConfig config;
   const Twin plain = derive_twin(world(), config, 5);

@@ -104,8 +104,9 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
   const City city = build_world_city(scenario);
   const FlightTrajectory flight = make_flight_trajectory(scenario, city.hints);
   require_flight_clearance(scenario, city, flight);
-  const std::vector<int> seen = twin_change_candidates(scenario, city.hints, flight);
-  const Twin twin = derive_twin(city, scenario.twin, scenario.seed, seen);
+  const std::vector<int> seen = twin_change_candidates(city.hints, flight);
+  const std::vector<int> seen_lots = lots_along_flight(flight, city.empty_lots_W, kSeenWithin_m);
+  const Twin twin = derive_twin(city, scenario.twin, scenario.seed, seen, seen_lots);
   write_ply((dir / "twin/twin.ply").string(), twin.mesh, scenario.origin);
   summary.world_triangles = city.mesh.num_triangles();
   summary.twin_triangles = twin.mesh.num_triangles();

@@ -40,10 +40,11 @@ void read_optional_text(const YamlReader& r, const YAML::Node& map, const std::s
 void read_city(const YamlReader& r, const YAML::Node& n, CityConfig& c) {
   r.expect_map(n, "city");
   if (!n) return;
-  r.check_keys(n, "city.", {"source", "size_m", "height_m", "path", "crs"});
+  r.check_keys(n, "city.", {"source", "size_m", "height_m", "blocks", "path", "crs"});
   r.read(n, "city.", "source", c.source);
   r.read(n, "city.", "size_m", c.size_m);
   r.read(n, "city.", "height_m", c.height_m);
+  r.read(n, "city.", "blocks", c.blocks);
   read_optional_text(r, n, "city.", "path", c.path);
   read_optional_text(r, n, "city.", "crs", c.crs);
 }

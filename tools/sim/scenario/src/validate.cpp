@@ -69,6 +69,9 @@ void validate_scenario_at(const Scenario& s, const std::string& file, const std:
   c.positive(s.city.height_m[0], "city.height_m");
   c.require(s.city.height_m[1] >= s.city.height_m[0] && s.city.height_m[1] <= 1000, "city.height_m",
             "must be [min, max] with min <= max <= 1000");
+  c.one_of(s.city.blocks, {"varied", "identical"}, "city.blocks");
+  c.require(s.city.blocks == "varied" || s.city.source == "procedural", "city.blocks",
+            "identical blocks need the procedural city");
   c.require(s.city.source == "procedural" || (s.city.path && !s.city.path->empty()), "city.path",
             "required when city.source is " + s.city.source);
   if (s.city.crs) c.require(s.city.crs->rfind("EPSG:", 0) == 0, "city.crs", "must look like EPSG:nnnn");

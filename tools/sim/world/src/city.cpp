@@ -68,7 +68,7 @@ Eigen::Vector4d inset(const Eigen::Vector4d& r, double d) { return {r[0] + d, r[
 class CityBuilder {
  public:
   CityBuilder(const CityConfig& config, std::uint64_t seed, const CityLayout& layout)
-      : config_(config), layout_(layout), rng_(seed) {
+      : config_(config), layout_(layout), rng_(seed), block_seed_(hash64(seed ^ 0xB10C5ULL)) {
     city_.layout = layout;
   }
 
@@ -89,7 +89,17 @@ class CityBuilder {
           continue;
         }
         add_street_furniture(block, half);
-        add_block(block);
+        if (config_.blocks == "identical") {
+          // Every block from the same draws, so its buildings, roofs, bands and balconies repeat at each block
+          // pitch; the street furniture around it stays the main stream's (cars and trees differ, as in a real
+          // street of identical blocks).
+          const Rng main = rng_;
+          rng_ = Rng(block_seed_);
+          add_block(block);
+          rng_ = main;
+        } else {
+          add_block(block);
+        }
       }
     }
     SceneHints& h = city_.hints;
@@ -154,7 +164,8 @@ class CityBuilder {
   }
 
   void add_block(const Eigen::Vector4d& block) {
-    if (rng_.chance(0.12)) {  // park: grass and trees, no building
+    const bool identical = config_.blocks == "identical";  // no parks: a street of identical blocks throughout
+    if (!identical && rng_.chance(0.12)) {  // park: grass and trees, no building
       const int trees = 8 + rng_.integer(14);
       for (int k = 0; k < trees; ++k)
         detail::add_tree(&city_.mesh, {rng_.uniform(block[0] + 3, block[2] - 3), rng_.uniform(block[1] + 3, block[3] - 3)},
@@ -249,6 +260,7 @@ class CityBuilder {
   const CityConfig& config_;
   CityLayout layout_;
   Rng rng_;
+  std::uint64_t block_seed_;  // the stream every block draws from when config_.blocks is "identical"
   City city_;
 };
 
@@ -261,6 +273,8 @@ City build_city(const CityConfig& config, std::uint64_t seed, const CityLayout& 
     throw InputError("city.size_m: must be in [60, 20000] m, got " + std::to_string(config.size_m));
   if (!(config.height_m[0] >= 3.0 && config.height_m[1] > config.height_m[0] + 3.0 && config.height_m[1] < 1000.0))
     throw InputError("city.height_m: need 3 <= min < max - 3 < 1000 m");
+  if (config.blocks != "varied" && config.blocks != "identical")
+    throw InputError("city.blocks: must be varied or identical, got '" + config.blocks + "'");
   return CityBuilder(config, seed, layout).build();
 }
 

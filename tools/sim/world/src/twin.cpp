@@ -127,11 +127,16 @@ void copy_perturbed(const TriMesh& w, const std::vector<int>& kept, const TwinCo
   }
 }
 
-// Twin-only buildings: plain boxes in seeded empty lots.
-void add_twin_only_buildings(const City& world, const TwinConfig& config, Rng* rng, Twin* twin) {
-  std::vector<int> lots(world.empty_lots_W.size());
-  std::iota(lots.begin(), lots.end(), 0);
+// Twin-only buildings: plain boxes in seeded empty lots, the seen ones first (as candidate_order; with none seen this
+// is one shuffle of all lots, the draws of the twins made before seen lots existed).
+void add_twin_only_buildings(const City& world, const TwinConfig& config, const std::vector<int>& seen_lots, Rng* rng,
+                             Twin* twin) {
+  const std::set<int> seen(seen_lots.begin(), seen_lots.end());
+  std::vector<int> lots, rest;
+  for (int k = 0; k < static_cast<int>(world.empty_lots_W.size()); ++k) (seen.count(k) ? lots : rest).push_back(k);
   shuffle(&lots, rng);
+  shuffle(&rest, rng);
+  lots.insert(lots.end(), rest.begin(), rest.end());
   for (int k = 0; k < config.added_buildings; ++k) {
     const Eigen::Vector4d& lot = world.empty_lots_W[lots[k]];
     const int id = static_cast<int>(world.buildings.size()) + k;
@@ -145,7 +150,8 @@ void add_twin_only_buildings(const City& world, const TwinConfig& config, Rng* r
 
 }  // namespace
 
-Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed, const std::vector<int>& seen_ids) {
+Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed, const std::vector<int>& seen_ids,
+                 const std::vector<int>& seen_lots) {
   validate(world, config);
   Rng rng(hash64(seed ^ 0x7417ULL));  // a stream of its own: the twin must not change when the city code draws more
   Twin twin;
@@ -165,7 +171,7 @@ Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed
     if (world.mesh.kind[i] != SurfaceKind::kDetail && !missing.count(world.mesh.building_id[i]))
       kept.push_back(static_cast<int>(i));
   copy_perturbed(world.mesh, kept, config, shift_W, &rng, &twin.mesh);
-  add_twin_only_buildings(world, config, &rng, &twin);
+  add_twin_only_buildings(world, config, seen_lots, &rng, &twin);
   return twin;
 }
 

@@ -23,6 +23,9 @@ struct CityConfig {
   std::string source = "procedural";          // procedural | osm | cityjson | mesh | 3dtiles
   double size_m = 600;                        // procedural: side of the square city [m]
   std::array<double, 2> height_m{8, 60};      // procedural: building height range [m]
+  // procedural: varied (every block drawn on its own) | identical (one block drawn and repeated on the whole grid,
+  // no parks: a 3D-aliased city whose streets look the same every block pitch, the tower at the centre aside)
+  std::string blocks = "varied";
   std::optional<std::string> path;            // file for osm / cityjson / mesh / 3dtiles
   std::optional<std::string> crs;             // "EPSG:nnnn" when the file does not say
 };

@@ -14,9 +14,12 @@ inline constexpr double kSeenWithin_m = 15.0;  // a building this close to the p
 std::vector<int> buildings_along_flight(const FlightTrajectory& trajectory, const std::vector<BuildingHint>& buildings,
                                         double within_m);
 
-// The seen_ids for derive_twin: for `streets` flights the buildings within kSeenWithin_m of the path; for the other
-// types none, so their twins draw over all buildings exactly as before streets flights existed.
-std::vector<int> twin_change_candidates(const Scenario& scenario, const SceneHints& hints,
-                                        const FlightTrajectory& trajectory);
+// Indices into lots_W (rectangles [min e, min n, max e, max n] [m, W]) of the lots within within_m of the flight.
+std::vector<int> lots_along_flight(const FlightTrajectory& trajectory, const std::vector<Eigen::Vector4d>& lots_W,
+                                   double within_m);
+
+// The seen_ids for derive_twin: the buildings within kSeenWithin_m of the path, whatever the trajectory type (loops
+// and waypoints flights too since issue 15's wrong-twin scenarios: a change the flight never sees tests nothing).
+std::vector<int> twin_change_candidates(const SceneHints& hints, const FlightTrajectory& trajectory);
 
 }  // namespace twinslam::sim

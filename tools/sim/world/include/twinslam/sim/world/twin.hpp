@@ -30,7 +30,9 @@ struct Twin {
 // Throws InputError naming the twin.* key when a value is out of range (negative or non-finite noise, more missing
 // buildings than there are besides the tallest, more added buildings than empty lots, non-finite offset, more
 // shifted buildings than remain besides the tallest and the missing ones, a shift outside [0, 20] m).
+// seen_ids (building ids) and seen_lots (indices into world.empty_lots_W) are what the flight passes: missing,
+// shifted and added buildings are drawn among them first.
 Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed,
-                 const std::vector<int>& seen_ids = {});
+                 const std::vector<int>& seen_ids = {}, const std::vector<int>& seen_lots = {});
 
 }  // namespace twinslam::sim
