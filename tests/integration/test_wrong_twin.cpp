@@ -23,10 +23,10 @@ const fs::path kScenarios = TWINSLAM_SCENARIO_DIR;
 const fs::path kWork = TWINSLAM_WRONG_TWIN_WORK_DIR;
 
 // The bound on an accepted registration's position error [m]. The twin's own 0.2 m per-surface noise and the VIO
-// cloud's depth errors give up to 0.97 m on the unchanged twin of the same flight (tiny, 50 s: 9 of 58 accepted
-// registrations beyond 0.5 m, README "Wrong twin"); a registration fitted to a wrong surface is off by about the
-// change itself (3 m; 2.5-2.9 m measured when a 30 s flight met the removed and added buildings during acquisition;
-// a block pitch, 60 m, in the aliased street).
+// cloud's depth errors give up to 0.81 m on the unchanged twin of the same flight (tiny, 50 s: 6 of 53 accepted
+// registrations beyond 0.5 m; up to 1.31 m on city-long, README "Registration against the twin"); one fitted
+// to a wrong surface is off by about the change itself (3 m; 2.55 m measured when tiny's 30 s loop met the removed
+// building during acquisition; a block pitch, 60 m, in the aliased street).
 constexpr double kMaxRegistrationError_m = 1.5;
 
 std::string read_text(const fs::path& file) {

@@ -173,8 +173,8 @@ TEST(SimCityLong, TwinChangesHitBuildingsAlongTheRoute) {
   const CityLong& c = city_long();
   ASSERT_GT(c.scenario.twin.missing_buildings, 0);
   ASSERT_GT(c.scenario.twin.shifted_buildings.count, 0);
-  const Twin twin = derive_twin(c.city, c.scenario.twin, c.scenario.seed,
-                                twin_change_candidates(c.city.hints, c.flight));
+  const std::vector<int> along = buildings_along_flight(c.flight, c.city.hints.buildings, kSeenWithin_m);
+  const Twin twin = derive_twin(c.city, c.scenario.twin, c.scenario.seed, TwinCandidates{along, along, {}});
   std::vector<int> changed = twin.missing_building_ids;
   changed.insert(changed.end(), twin.shifted_building_ids.begin(), twin.shifted_building_ids.end());
   ASSERT_EQ(changed.size(), static_cast<std::size_t>(c.scenario.twin.missing_buildings +

@@ -81,6 +81,17 @@ GnssModelFn gnss_model(const Scenario& scenario, const City& city, const fs::pat
     return std::move(g.fixes);
   };
 }
+// The twin's changes are drawn first among what the flight passes (within kSeenWithin_m), so it meets them. The draw
+// of missing buildings shares its random stream with the faces' noise: it gets candidates only where it always had
+// them (streets flights) or where a building is missing, so a twin without changes keeps its faces byte for byte.
+TwinCandidates twin_candidates(const Scenario& scenario, const City& city, const FlightTrajectory& flight) {
+  TwinCandidates c;
+  c.shifted_ids = buildings_along_flight(flight, city.hints.buildings, kSeenWithin_m);
+  if (scenario.trajectory.type == "streets" || scenario.twin.missing_buildings > 0) c.missing_ids = c.shifted_ids;
+  c.lot_ids = lots_along_flight(flight, city.empty_lots_W, kSeenWithin_m);
+  return c;
+}
+
 }  // namespace
 
 SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
@@ -104,9 +115,7 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
   const City city = build_world_city(scenario);
   const FlightTrajectory flight = make_flight_trajectory(scenario, city.hints);
   require_flight_clearance(scenario, city, flight);
-  const std::vector<int> seen = twin_change_candidates(city.hints, flight);
-  const std::vector<int> seen_lots = lots_along_flight(flight, city.empty_lots_W, kSeenWithin_m);
-  const Twin twin = derive_twin(city, scenario.twin, scenario.seed, seen, seen_lots);
+  const Twin twin = derive_twin(city, scenario.twin, scenario.seed, twin_candidates(scenario, city, flight));
   write_ply((dir / "twin/twin.ply").string(), twin.mesh, scenario.origin);
   summary.world_triangles = city.mesh.num_triangles();
   summary.twin_triangles = twin.mesh.num_triangles();

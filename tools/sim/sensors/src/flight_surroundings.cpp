@@ -49,8 +49,4 @@ std::vector<int> lots_along_flight(const FlightTrajectory& trajectory, const std
   return out;
 }
 
-std::vector<int> twin_change_candidates(const SceneHints& hints, const FlightTrajectory& trajectory) {
-  return buildings_along_flight(trajectory, hints.buildings, kSeenWithin_m);
-}
-
 }  // namespace twinslam::sim

@@ -150,17 +150,17 @@ void add_twin_only_buildings(const City& world, const TwinConfig& config, const 
 
 }  // namespace
 
-Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed, const std::vector<int>& seen_ids,
-                 const std::vector<int>& seen_lots) {
+Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed, const TwinCandidates& seen) {
   validate(world, config);
   Rng rng(hash64(seed ^ 0x7417ULL));  // a stream of its own: the twin must not change when the city code draws more
   Twin twin;
 
-  const std::vector<int> candidates = candidate_order(world, seen_ids, {}, &rng);
+  // This draw shares its stream with the faces' noise below: with other candidates the twin's faces differ too.
+  const std::vector<int> candidates = candidate_order(world, seen.missing_ids, {}, &rng);
   twin.missing_building_ids.assign(candidates.begin(), candidates.begin() + config.missing_buildings);
   std::sort(twin.missing_building_ids.begin(), twin.missing_building_ids.end());
   const std::set<int> missing(twin.missing_building_ids.begin(), twin.missing_building_ids.end());
-  const std::map<int, Eigen::Vector3d> shift_W = choose_shifted(world, config, seed, seen_ids, missing);
+  const std::map<int, Eigen::Vector3d> shift_W = choose_shifted(world, config, seed, seen.shifted_ids, missing);
   for (const auto& [id, shift] : shift_W) {
     twin.shifted_building_ids.push_back(id);
     twin.shifted_building_offsets_W.push_back(shift);
@@ -171,7 +171,7 @@ Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed
     if (world.mesh.kind[i] != SurfaceKind::kDetail && !missing.count(world.mesh.building_id[i]))
       kept.push_back(static_cast<int>(i));
   copy_perturbed(world.mesh, kept, config, shift_W, &rng, &twin.mesh);
-  add_twin_only_buildings(world, config, seen_lots, &rng, &twin);
+  add_twin_only_buildings(world, config, seen.lot_ids, &rng, &twin);
   return twin;
 }
 

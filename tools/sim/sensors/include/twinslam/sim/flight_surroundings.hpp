@@ -18,8 +18,4 @@ std::vector<int> buildings_along_flight(const FlightTrajectory& trajectory, cons
 std::vector<int> lots_along_flight(const FlightTrajectory& trajectory, const std::vector<Eigen::Vector4d>& lots_W,
                                    double within_m);
 
-// The seen_ids for derive_twin: the buildings within kSeenWithin_m of the path, whatever the trajectory type (loops
-// and waypoints flights too since issue 15's wrong-twin scenarios: a change the flight never sees tests nothing).
-std::vector<int> twin_change_candidates(const SceneHints& hints, const FlightTrajectory& trajectory);
-
 }  // namespace twinslam::sim

@@ -9,8 +9,8 @@
 // - `shifted_buildings`: N buildings (never the tallest, never a missing one) moved horizontally by offset_m in a
 //   seeded random direction each (a building mapped in the wrong place); drawn from their own random stream, so twins
 //   without shifted buildings are unchanged by them.
-// Missing and shifted buildings are drawn first among `seen_ids` (the buildings the flight passes, e.g. along a
-// `streets` route), then among the others; with no seen ids the draw is over all buildings.
+// Missing, shifted and added buildings are drawn first among TwinCandidates (what the flight passes), then among
+// the others; with no candidates the draw is over all buildings (lots).
 #include <cstdint>
 #include <vector>
 
@@ -30,9 +30,14 @@ struct Twin {
 // Throws InputError naming the twin.* key when a value is out of range (negative or non-finite noise, more missing
 // buildings than there are besides the tallest, more added buildings than empty lots, non-finite offset, more
 // shifted buildings than remain besides the tallest and the missing ones, a shift outside [0, 20] m).
-// seen_ids (building ids) and seen_lots (indices into world.empty_lots_W) are what the flight passes: missing,
-// shifted and added buildings are drawn among them first.
+// What the flight passes (simulate.cpp): each kind of change is drawn first among these, then among the rest.
+struct TwinCandidates {
+  std::vector<int> missing_ids;  // building ids, for missing_buildings
+  std::vector<int> shifted_ids;  // building ids, for shifted_buildings
+  std::vector<int> lot_ids;      // indices into City::empty_lots_W, for added_buildings
+};
+
 Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed,
-                 const std::vector<int>& seen_ids = {}, const std::vector<int>& seen_lots = {});
+                 const TwinCandidates& candidates = {});
 
 }  // namespace twinslam::sim
