@@ -78,10 +78,18 @@ void expect_wrong_twin_is_harmless(const std::string& name) {
 
 }  // namespace
 
-TEST(WrongTwin, ABuildingShiftedThreeMetresIsNeverTakenForTheTruth) { expect_wrong_twin_is_harmless("wrong-twin-shifted"); }
+TEST(WrongTwin, ABuildingShiftedThreeMetresIsNeverTakenForTheTruth) {
+  expect_wrong_twin_is_harmless("wrong-twin-shifted");
+}
 
-TEST(WrongTwin, ABuildingMissingFromTheTwinPullsNoRegistrationAway) { expect_wrong_twin_is_harmless("wrong-twin-removed"); }
+TEST(WrongTwin, ABuildingMissingFromTheTwinPullsNoRegistrationAway) {
+  expect_wrong_twin_is_harmless("wrong-twin-removed");
+}
 
-TEST(WrongTwin, ABuildingOnlyTheTwinHasPullsNoRegistrationAway) { expect_wrong_twin_is_harmless("wrong-twin-added"); }
+TEST(WrongTwin, ABuildingOnlyTheTwinHasPullsNoRegistrationAway) {
+  expect_wrong_twin_is_harmless("wrong-twin-added");
+}
 
-TEST(WrongTwin, AStreetOfIdenticalBlocksDoesNotAliasARegistration) { expect_wrong_twin_is_harmless("wrong-twin-aliased"); }
+TEST(WrongTwin, AStreetOfIdenticalBlocksDoesNotAliasARegistration) {
+  expect_wrong_twin_is_harmless("wrong-twin-aliased");
+}

@@ -81,6 +81,7 @@ GnssModelFn gnss_model(const Scenario& scenario, const City& city, const fs::pat
     return std::move(g.fixes);
   };
 }
+
 // The twin's changes are drawn first among what the flight passes (within kSeenWithin_m), so it meets them. The draw
 // of missing buildings shares its random stream with the faces' noise: it gets candidates only where it always had
 // them (streets flights) or where a building is missing, so a twin without changes keeps its faces byte for byte.

@@ -40,7 +40,8 @@ std::string scenario_to_yaml(const Scenario& s) {
   o << "origin: {lat: " << num(s.origin.lat_deg) << ", lon: " << num(s.origin.lon_deg) << ", alt: " << num(s.origin.alt_m)
     << "}\n";
   o << "city:\n  source: " << s.city.source << "\n  size_m: " << num(s.city.size_m) << "\n  height_m: "
-    << list(s.city.height_m) << "\n  blocks: " << s.city.blocks << "\n  path: " << (s.city.path ? quoted(*s.city.path) : "null")
+    << list(s.city.height_m) << "\n  blocks: " << s.city.blocks
+    << "\n  path: " << (s.city.path ? quoted(*s.city.path) : "null")
     << "\n  crs: " << (s.city.crs ? quoted(*s.city.crs) : "null") << "\n";
   const TrajectoryConfig& t = s.trajectory;
   o << "trajectory:\n  type: " << t.type << "\n  duration_s: " << num(t.duration_s) << "\n  speed_mps: "

@@ -22,7 +22,8 @@ std::vector<Eigen::Vector2d> sampled_path(const FlightTrajectory& trajectory) {
 }
 
 bool near_path(const std::vector<Eigen::Vector2d>& path, const Eigen::Vector4d& r, double within_m) {
-  return std::any_of(path.begin(), path.end(), [&](const Eigen::Vector2d& p) { return distance_to_rect(p, r) <= within_m; });
+  return std::any_of(path.begin(), path.end(),
+                     [&](const Eigen::Vector2d& p) { return distance_to_rect(p, r) <= within_m; });
 }
 
 }  // namespace

@@ -54,21 +54,26 @@ void shuffle(std::vector<T>* v, Rng* rng) {
   for (int i = static_cast<int>(v->size()) - 1; i > 0; --i) std::swap((*v)[i], (*v)[rng->integer(i + 1)]);
 }
 
-// The world's buildings except the tallest and `excluded`, in a seeded order: the seen ones (shuffled) before the
-// others (shuffled), so the first N of them hit what the flight sees while there are enough. With no seen ids this
-// is exactly one shuffle of all candidates (the draws of the twins made before seen ids existed).
-std::vector<int> candidate_order(const City& world, const std::vector<int>& seen_ids, const std::set<int>& excluded,
-                                 Rng* rng) {
+// `ids` in a seeded order: the seen ones (shuffled) before the others (shuffled), so the first N of them hit what
+// the flight sees while there are enough. With none seen this is exactly one shuffle of all (the draws of the twins
+// made before seen ids existed).
+std::vector<int> seen_first(const std::vector<int>& ids, const std::vector<int>& seen_ids, Rng* rng) {
   const std::set<int> seen(seen_ids.begin(), seen_ids.end());
   std::vector<int> first, rest;
-  for (const auto& b : world.buildings) {
-    if (b.id == world.tallest_id || excluded.count(b.id)) continue;
-    (seen.count(b.id) ? first : rest).push_back(b.id);
-  }
+  for (const int id : ids) (seen.count(id) ? first : rest).push_back(id);
   shuffle(&first, rng);
   shuffle(&rest, rng);
   first.insert(first.end(), rest.begin(), rest.end());
   return first;
+}
+
+// The world's buildings except the tallest and `excluded`, seen ones first (seen_first).
+std::vector<int> candidate_order(const City& world, const std::vector<int>& seen_ids, const std::set<int>& excluded,
+                                 Rng* rng) {
+  std::vector<int> ids;
+  for (const auto& b : world.buildings)
+    if (b.id != world.tallest_id && !excluded.count(b.id)) ids.push_back(b.id);
+  return seen_first(ids, seen_ids, rng);
 }
 
 // Horizontal shift [m, W] of each shifted building, from a stream of its own so that twins without shifted
@@ -127,16 +132,12 @@ void copy_perturbed(const TriMesh& w, const std::vector<int>& kept, const TwinCo
   }
 }
 
-// Twin-only buildings: plain boxes in seeded empty lots, the seen ones first (as candidate_order; with none seen this
-// is one shuffle of all lots, the draws of the twins made before seen lots existed).
+// Twin-only buildings: plain boxes in seeded empty lots, the seen ones first (seen_first).
 void add_twin_only_buildings(const City& world, const TwinConfig& config, const std::vector<int>& seen_lots, Rng* rng,
                              Twin* twin) {
-  const std::set<int> seen(seen_lots.begin(), seen_lots.end());
-  std::vector<int> lots, rest;
-  for (int k = 0; k < static_cast<int>(world.empty_lots_W.size()); ++k) (seen.count(k) ? lots : rest).push_back(k);
-  shuffle(&lots, rng);
-  shuffle(&rest, rng);
-  lots.insert(lots.end(), rest.begin(), rest.end());
+  std::vector<int> all(world.empty_lots_W.size());
+  std::iota(all.begin(), all.end(), 0);
+  const std::vector<int> lots = seen_first(all, seen_lots, rng);
   for (int k = 0; k < config.added_buildings; ++k) {
     const Eigen::Vector4d& lot = world.empty_lots_W[lots[k]];
     const int id = static_cast<int>(world.buildings.size()) + k;

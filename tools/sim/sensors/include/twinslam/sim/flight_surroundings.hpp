@@ -1,6 +1,6 @@
 #pragma once
-// Which buildings a flight passes: the twin's changes (missing and shifted buildings) are drawn among them first, so
-// that a flight through the streets actually meets the places where the twin is wrong.
+// Which buildings and empty lots a flight passes: the twin's changes (missing, shifted and added buildings) are drawn
+// among them first, so that the flight actually meets the places where the twin is wrong.
 #include <vector>
 
 #include "twinslam/sim/flight_trajectory.hpp"

@@ -27,9 +27,6 @@ struct Twin {
   std::vector<Eigen::Vector3d> shifted_building_offsets_W;  // their shift [m, W] (z = 0), same order
 };
 
-// Throws InputError naming the twin.* key when a value is out of range (negative or non-finite noise, more missing
-// buildings than there are besides the tallest, more added buildings than empty lots, non-finite offset, more
-// shifted buildings than remain besides the tallest and the missing ones, a shift outside [0, 20] m).
 // What the flight passes (simulate.cpp): each kind of change is drawn first among these, then among the rest.
 struct TwinCandidates {
   std::vector<int> missing_ids;  // building ids, for missing_buildings
@@ -37,6 +34,9 @@ struct TwinCandidates {
   std::vector<int> lot_ids;      // indices into City::empty_lots_W, for added_buildings
 };
 
+// Throws InputError naming the twin.* key when a value is out of range (negative or non-finite noise, more missing
+// buildings than there are besides the tallest, more added buildings than empty lots, non-finite offset, more
+// shifted buildings than remain besides the tallest and the missing ones, a shift outside [0, 20] m).
 Twin derive_twin(const City& world, const TwinConfig& config, std::uint64_t seed,
                  const TwinCandidates& candidates = {});
 
