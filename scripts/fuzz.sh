@@ -34,6 +34,22 @@ export ASAN_OPTIONS="detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 export root build seconds
 export FUZZ_EXTRA="$*"
+# Progress: one line per finished target with how many are done and the time left (each target takes SECONDS).
+jobs=${TWINSLAM_FUZZ_JOBS:-2}
+total=$(printf '%s\n' $targets | wc -l)
+progress=$build/progress.$$
+rm -rf "$progress" && mkdir -p "$progress"
+export progress total jobs
+echo "fuzz.sh: $total targets x $seconds s, $jobs at a time: about $(( (total + jobs - 1) / jobs * seconds )) s"
+# "[done/total, ETA s]" after one more target ended (a file per finished target: safe with parallel jobs).
+progress_tag() {
+  touch "$progress/$1"
+  local done left
+  done=$(ls "$progress" | wc -l)
+  left=$(( (total - done + jobs - 1) / jobs * seconds ))
+  echo "[$done/$total, ETA ${left} s]"
+}
+export -f progress_tag
 
 # One target: its run's executions and coverage on success; exit 1 with the first line of the report otherwise.
 run_one() {
@@ -47,12 +63,15 @@ run_one() {
     local execs cov
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
     cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1)
-    echo "fuzz.sh: $t ok: ${seconds} s, $execs executions, $cov, corpus $(ls "$corpus" | wc -l) inputs"
+    echo "fuzz.sh: $(progress_tag "$t") $t ok: ${seconds} s, $execs executions, $cov, corpus $(ls "$corpus" | wc -l) inputs"
   else
-    echo "fuzz.sh: $t FAILED (log $log, input in $crashes): $(grep -m1 -E "ERROR: |runtime error|uncaught|terminate called|deadly signal|Timeout" "$log" || tail -1 "$log")" >&2
+    echo "fuzz.sh: $(progress_tag "$t") $t FAILED (log $log, input in $crashes): $(grep -m1 -E "ERROR: |runtime error|uncaught|terminate called|deadly signal|Timeout" "$log" || tail -1 "$log")" >&2
     return 1
   fi
 }
 export -f run_one
 # Two targets at a time (TWINSLAM_FUZZ_JOBS): a 2-core machine; each libFuzzer process is single-threaded.
-printf '%s\n' $targets | xargs -P "${TWINSLAM_FUZZ_JOBS:-2}" -I{} bash -c 'run_one {}' || exit 1
+status=0
+printf '%s\n' $targets | xargs -P "$jobs" -I{} bash -c 'run_one {}' || status=1
+rm -rf "$progress"
+exit $status

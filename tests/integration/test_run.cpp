@@ -25,6 +25,9 @@ TEST(Run, EurocExcerptFlowsThroughTheServices) {
                                     "--out", out.string(), "--domain", std::to_string(test::test_domain())},
                                    {}, std::chrono::seconds(150));
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  // Progress on stderr (plain lines: not a terminal): the estimator's poses against the dataset's 95 frames.
+  EXPECT_NE(r.err.find("run        [##############################] 100% 95/95"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("ETA"), std::string::npos) << r.err;
   std::ifstream in(out / "run.json");
   const auto run = nlohmann::json::parse(in);
   EXPECT_EQ(run["status"], "ok");

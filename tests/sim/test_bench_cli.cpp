@@ -3,6 +3,7 @@
 // estimate must be within 1 % of the path length (posyaw) — the estimator's own tests hold it to tighter bounds.
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -26,6 +27,8 @@ TEST(BenchCli, TinyFlightTableMetricsAndPlots) {
                                         "--modes", "vio", "--features"},
                                        {}, std::chrono::seconds(300));
   ASSERT_EQ(bench.exit_code, 0) << bench.out << bench.err;
+  // Progress per mode on stderr, plain lines when not a terminal (as here), ending at every frame done.
+  EXPECT_TRUE(std::regex_search(bench.err, std::regex(R"(\nvio +\[#{30}\] 100% (\d+)/\1 .*ETA 0s\n)"))) << bench.err;
   std::ifstream table_in(out / "table.md");
   std::stringstream table;
   table << table_in.rdbuf();

@@ -56,7 +56,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   struct Options {
     std::string dataset, out;
     std::vector<std::string> modes = all_modes();
-    bool features = false;
+    bool features = false, no_progress = false;
     std::string config_dir, weights = "adaptive", initial_pose;
   };
   auto o = std::make_shared<Options>();
@@ -71,6 +71,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"paper", "adaptive", "fixed"}))
       ->capture_default_str();
   cmd->add_option("--initial-pose", o->initial_pose, "Twin modes without GNSS: \"E N U YAW_DEG\" (see run)");
+  cmd->add_flag("--no-progress", o->no_progress, "No progress bar per mode on stderr");
   cmd->callback([o, &exit_code] {
     const Trajectory gt = read_dataset_groundtruth(o->dataset);
     fs::create_directories(o->out);
@@ -104,6 +105,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       run.weights = o->weights;
       run.initial_pose = o->initial_pose;
       run.quiet = true;
+      run.progress = !o->no_progress;
+      run.progress_label = mode;
       std::cerr << "bench: running " << mode << " ..." << std::endl;
       int run_code = kExitOk;
       try {

@@ -1,6 +1,7 @@
 // `twinslam run DIR --mode MODE --out RUN`: runs the service pipeline on one dataset and records what it produced.
 // The services are separate processes on a private DDS domain (so runs and tests never hear each other); this
 // process records every topic reliably, waits for ingest to finish the dataset, stops the services, and writes RUN/.
+#include <atomic>
 #include <chrono>
 #include <optional>
 #include <cstdio>
@@ -23,6 +24,7 @@
 #include "run_record.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
+#include "twinslam/core/progress.hpp"
 #include "twinslam/core/shutdown.hpp"
 #include "twinslam/ingest/dataset.hpp"
 #include "twinslam/ingest/features.hpp"
@@ -126,11 +128,24 @@ int run_pipeline(const RunOptions& o) {
     if (o.features) record.frame_in(m.stamp_ns(), since_ms());
     record.features(m.stamp_ns(), m.tracking_ms());
   };
-  hooks.odometry = [&](const msg::Odometry& m) { record.odometry(to_record(m), since_ms()); };
+  std::atomic<std::size_t> poses{0};  // frames the estimator has finished: the progress of the run
+  hooks.odometry = [&](const msg::Odometry& m) {
+    record.odometry(to_record(m), since_ms());
+    poses.fetch_add(1, std::memory_order_relaxed);
+  };
   hooks.local_map = [&](const msg::LocalMap& m) {
     // The estimator sends its covariance once it has a world alignment: then the keyframe pose is in W.
     std::optional<Eigen::Isometry3d> T_WB;
-    if (!m.T_WB_covariance().empty()) T_WB = dds::from_msg(m.T_WL()) * dds::from_msg(m.T_LB());
+    if (!m.T_WB_covariance().empty()) {
+      const Eigen::Isometry3d T_WL = dds::from_msg(m.T_WL());
+      T_WB = T_WL * dds::from_msg(m.T_LB());
+      std::vector<LandmarkRecord> in_W;
+      in_W.reserve(m.landmarks().size());
+      for (const msg::Landmark& l : m.landmarks()) {
+        in_W.push_back({l.id(), m.keyframe_stamp_ns(), T_WL * dds::from_msg(l.p_L()), l.quality()});
+      }
+      record.landmarks_W(in_W);
+    }
     record.local_map(m.keyframe_stamp_ns(), since_ms(), m.landmarks().size(), T_WB);
   };
   hooks.registration = [&](const msg::Registration& m) { record.registration(to_record(m), since_ms()); };
@@ -196,7 +211,13 @@ int run_pipeline(const RunOptions& o) {
   // Lockstep: the next frame goes out once every stage has finished the previous one.
   if (!o.realtime) ingest_args.insert(ingest_args.end(), {"--ack-from", o.features ? "estimator" : "tracking,estimator"});
   supervisor.start({"ingest", "twinslam-ingest", ingest_args, env, {}, true});
-  const auto event = supervisor.watch();
+  // One pose per camera frame: the bar counts the estimator's poses against the dataset's frames.
+  Progress progress(o.progress_label, dataset.images.size(), o.progress);
+  auto event = process::Supervisor::Event::Timeout;
+  while ((event = supervisor.watch(std::chrono::milliseconds(250))) == process::Supervisor::Event::Timeout) {
+    progress.update(poses.load(std::memory_order_relaxed));
+  }
+  progress.finish(poses.load(std::memory_order_relaxed));
   const auto results = supervisor.stop_all();
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
@@ -257,6 +278,10 @@ int run_pipeline(const RunOptions& o) {
     // LocalMap -> Registration, both seen by this process (services/registration/README.md).
     run["registration_latency_ms"] = {{"count", latency.count}, {"median", latency.median_ms}, {"p99", latency.p99_ms}};
   }
+  if (geo) {
+    // W's origin, so exports (twinslam export) place the run on Earth without the dataset at hand.
+    run["origin"] = {{"lat_deg", geo->origin.lat_deg}, {"lon_deg", geo->origin.lon_deg}, {"alt_m", geo->origin.alt_m}};
+  }
   if (uses_twin(o.mode)) {
     run["twin"] = {{"store", twin_store.string()},
                    {"weights", o.weights},
@@ -299,7 +324,11 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--initial-pose", o->initial_pose,
                   "Twin modes without GNSS: \"E N U YAW_DEG\", the body's pose in W at the first estimate");
   cmd->add_option("--config-dir", o->config_dir, "Folder of <service>.yaml configs (e.g. deploy/config)");
-  cmd->callback([o, &exit_code] { exit_code = run_pipeline(*o); });
+  cmd->add_flag("--no-progress", o->no_progress, "No progress bar on stderr");
+  cmd->callback([o, &exit_code] {
+    o->progress = !o->no_progress;
+    exit_code = run_pipeline(*o);
+  });
 }
 
 }  // namespace twinslam::cli

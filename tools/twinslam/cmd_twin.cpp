@@ -14,6 +14,7 @@
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
 #include "twinslam/twin/load.hpp"
+#include "twinslam/core/progress.hpp"
 #include "twinslam/twin/store.hpp"
 
 namespace twinslam::cli {
@@ -69,7 +70,11 @@ int run_build(const BuildOptions& o) {
     mesh_W.append(part);
   }
   if (mesh_W.empty()) throw InputError(where(o.sources.front(), 0, "the sources hold no geometry"));
-  const twin::TwinIndex index = twin::build_twin_store(mesh_W, origin, o.store, o.out);
+  std::optional<Progress> bar;  // created at the first call, when the number of tiles is known
+  const twin::TwinIndex index = twin::build_twin_store(mesh_W, origin, o.store, o.out, [&](std::size_t done, std::size_t n) {
+    if (!bar) bar.emplace("twin build", n, true);
+    bar->update(done);
+  });
   std::size_t bytes = 0;
   for (const twin::TileInfo& t : index.tiles) bytes += t.bytes;
   std::printf("twin %s: id %s, %zu tiles of %.0f m, %zu triangles, %zu points (spacing %.2f m), %.1f MB; %s\n",

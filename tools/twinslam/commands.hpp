@@ -15,5 +15,6 @@ void add_bench_command(CLI::App& app, int& exit_code);   // cmd_bench.cpp
 void add_twin_command(CLI::App& app, int& exit_code);    // cmd_twin.cpp
 void add_register_command(CLI::App& app, int& exit_code);  // cmd_register.cpp
 void add_gnss_command(CLI::App& app, int& exit_code);      // cmd_gnss.cpp
+void add_export_command(CLI::App& app, int& exit_code);    // cmd_export.cpp
 
 }  // namespace twinslam::cli

@@ -12,6 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "twinslam/core/error.hpp"
+#include "twinslam/core/progress.hpp"
 #include "twinslam/twin/load.hpp"
 #include "twinslam/twin/store.hpp"
 
@@ -125,7 +126,11 @@ fs::path dataset_twin_store(const DatasetGeo& geo, bool quiet) {
   // Per process: two runs of the same dataset may build it at once (parallel benches, ctest).
   const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());
   fs::remove_all(tmp);
-  twin::build_twin_store(mesh_W, geo.origin, store, tmp.string());
+  std::optional<Progress> bar;  // created at the first call, when the number of tiles is known
+  twin::build_twin_store(mesh_W, geo.origin, store, tmp.string(), [&](std::size_t done, std::size_t n) {
+    if (!bar) bar.emplace("twin store", n, !quiet);
+    bar->update(done);
+  });
   std::error_code renamed;
   fs::rename(tmp, dir, renamed);  // whole store or nothing: a run killed mid-build leaves no half store under the key
   if (renamed) {

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   twinslam::cli::add_twin_command(app, exit_code);
   twinslam::cli::add_register_command(app, exit_code);
   twinslam::cli::add_gnss_command(app, exit_code);
+  twinslam::cli::add_export_command(app, exit_code);
   return twinslam::guarded_main("twinslam", [&] {
     twinslam::init_logging("info");
     try {

@@ -10,6 +10,8 @@ struct RunOptions {
   std::string weights = "adaptive";  // twin modes: registration information weighting (paper | adaptive | fixed)
   std::string initial_pose;          // twin modes without GNSS: "E N U YAW_DEG" of the body at the first estimate
   bool realtime = false, max = false, features = false, quiet = false;
+  bool progress = true, no_progress = false;  // a bar (poses / camera frames) with ETA on stderr; --no-progress
+  std::string progress_label = "run";         // the bar's label (bench: the mode)
   int domain = -1;
   double start_timeout_s = 60;
 };

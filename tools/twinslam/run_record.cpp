@@ -34,6 +34,14 @@ void RunRecord::local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::s
   if (T_WB_world) local_map_T_WB_.emplace(keyframe_stamp_ns, *T_WB_world);
 }
 
+void RunRecord::landmarks_W(const std::vector<LandmarkRecord>& landmarks) {
+  std::lock_guard lock(mutex_);
+  for (const LandmarkRecord& l : landmarks) {
+    LandmarkRecord& kept = landmarks_W_[l.id];
+    if (l.keyframe_stamp_ns >= kept.keyframe_stamp_ns) kept = l;  // LocalMaps may arrive out of order
+  }
+}
+
 std::pair<std::size_t, std::size_t> RunRecord::local_map_landmarks() const {
   std::lock_guard lock(mutex_);
   if (local_map_sizes_.empty()) return {0, 0};
@@ -157,6 +165,19 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
       }
     }
     written.push_back(dir / "registrations.csv");
+  }
+  if (!landmarks_W_.empty()) {
+    const auto file = dir / "landmarks.csv";
+    std::ofstream f(file);
+    if (!f) throw InputError(file.string() + ": cannot write");
+    f << "#landmark_id,keyframe_stamp_ns,x_W [m],y_W [m],z_W [m],quality\n";
+    for (const auto& [id, l] : landmarks_W_) {
+      char row[200];
+      std::snprintf(row, sizeof row, "%llu,%lld,%.4f,%.4f,%.4f,%.3f\n", static_cast<unsigned long long>(id),
+                    static_cast<long long>(l.keyframe_stamp_ns), l.p_W.x(), l.p_W.y(), l.p_W.z(), l.quality);
+      f << row;
+    }
+    written.push_back(file);
   }
   return written;
 }

@@ -43,6 +43,15 @@ struct RegistrationRecord {
   std::optional<Eigen::Isometry3d> keyframe_T_WB;
 };
 
+// A landmark of a LocalMap in W (T_WL p_L) while the estimator had a world alignment: landmarks.csv keeps the
+// latest of each id, the cloud `twinslam export --ply` writes.
+struct LandmarkRecord {
+  std::uint64_t id = 0;
+  std::int64_t keyframe_stamp_ns = 0;  // of the LocalMap that carried it last
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();  // [m]
+  float quality = 0;                             // 0..1 (Landmark.quality)
+};
+
 class RunRecord {
  public:
   // Thread-safe: called from DDS listener threads. `wall_ms` is this process's steady clock in ms.
@@ -52,6 +61,8 @@ class RunRecord {
   // A LocalMap on the wire; T_WB_world: its keyframe pose when it was in W (the estimator had a world alignment).
   void local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::size_t landmarks,
                  const std::optional<Eigen::Isometry3d>& T_WB_world = std::nullopt);
+  // The landmarks of a LocalMap in W (only while aligned); a later LocalMap's estimate of an id replaces the earlier.
+  void landmarks_W(const std::vector<LandmarkRecord>& landmarks);
   void registration(RegistrationRecord r, double wall_ms);  // fills r.pipeline_latency_ms and r.keyframe_T_WB
   // Median and 99th percentile of pipeline_latency_ms over the registrations whose LocalMap was seen [ms].
   struct Latency {
@@ -68,7 +79,8 @@ class RunRecord {
   // Stamp of the first pose in W (ODOM_ALIGNED) and of the first estimated pose, if any.
   std::optional<std::int64_t> first_aligned_stamp_ns() const;
   std::optional<std::int64_t> first_estimate_stamp_ns() const;
-  // Writes the four files into `dir` (trajectories only when there is odometry). Returns the files written.
+  // Writes the files into `dir` (trajectories only when there is odometry, landmarks.csv only with landmarks in W).
+  // Returns the files written.
   std::vector<std::filesystem::path> write(const std::filesystem::path& dir) const;
 
  private:
@@ -78,6 +90,7 @@ class RunRecord {
   std::vector<std::pair<OdometryRecord, double>> odometry_;  // with end-to-end ms
   std::vector<RegistrationRecord> registrations_;
   std::vector<std::size_t> local_map_sizes_;
+  std::map<std::uint64_t, LandmarkRecord> landmarks_W_;
 };
 
 }  // namespace twinslam::cli

@@ -50,7 +50,7 @@ std::uint64_t tile_stream(const TileKey& key) {
 }  // namespace
 
 TwinIndex build_twin_store(const Mesh& mesh_W, const GeoOrigin& origin, const StoreConfig& config,
-                           const std::string& out_dir) {
+                           const std::string& out_dir, const TileProgress& on_tile) {
   config.validate();
   if (mesh_W.empty()) throw InputError(where(out_dir, 0, "the twin mesh is empty: nothing to store"));
   const bool point_source = mesh_W.triangles.empty();  // a point set with normals: its points are the sampling
@@ -77,6 +77,7 @@ TwinIndex build_twin_store(const Mesh& mesh_W, const GeoOrigin& origin, const St
   std::set<TileKey> keys;
   for (const auto& [key, m] : meshes) keys.insert(key);
   for (const auto& [key, p] : given_points) keys.insert(key);
+  if (on_tile) on_tile(0, keys.size());
   for (const TileKey& key : keys) {  // std::set: sorted, so the index and the id are in key order
     const auto mesh_it = meshes.find(key);
     const Mesh points = point_source
@@ -105,6 +106,7 @@ TwinIndex build_twin_store(const Mesh& mesh_W, const GeoOrigin& origin, const St
     index.triangles += info.triangles;
     index.points += info.points;
     index.tiles.push_back(info);
+    if (on_tile) on_tile(index.tiles.size(), keys.size());
   }
   index.twin_id = id.hex();
   write_twin_index(index, out_dir);

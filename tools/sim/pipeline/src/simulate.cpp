@@ -6,7 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "progress.hpp"
+#include "twinslam/core/progress.hpp"
 #include "twinslam/camera/sensor_yaml.hpp"
 #include "twinslam/sim/auto_exposure.hpp"
 #include "twinslam/sim/camera_calibration.hpp"

@@ -12,6 +12,7 @@
 // decoded coordinates are in W whoever decodes the bytes. Position error after a round trip (per coordinate):
 //   <= range / (2 * (2^position_bits - 1)) + |p - origin| * 2^-24,  range = largest side of the tile's bounding box;
 // a 50 m x 50 m x 100 m tile at the default 20 bits: <= 0.05 mm + 0.01 mm.
+#include <functional>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -78,8 +79,10 @@ struct Tile {
 // A mesh without triangles but with one normal per point is a point set: its points are the tiles' points. Rebuilding
 // into the same folder removes its old tiles/*.drc first. Throws InputError when out_dir cannot be written or the
 // mesh is empty or malformed.
+// on_tile(done, total), if given, is called before the first tile and after each one (progress of long builds).
+using TileProgress = std::function<void(std::size_t done, std::size_t total)>;
 TwinIndex build_twin_store(const Mesh& mesh_W, const GeoOrigin& origin, const StoreConfig& config,
-                           const std::string& out_dir);
+                           const std::string& out_dir, const TileProgress& on_tile = {});
 
 // Throws InputError naming the file and problem for a missing or malformed index.
 TwinIndex read_twin_index(const std::string& twin_dir);
