@@ -12,20 +12,16 @@
 
 #include "proj_enu.hpp"
 #include "subprocess.hpp"
+#include "text_file.hpp"
 #include "twinslam/trajectory/io.hpp"
 #include "twinslam/twin/ply.hpp"
 
 namespace fs = std::filesystem;
 using namespace twinslam;
+using twinslam::test::read_text;
 
 namespace {
 
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // EGM96 undulation N [m] (h = H + N) through PROJ's own WGS84 -> WGS84 + EGM96 height operation.
 double egm96_undulation(double lat_deg, double lon_deg) {
@@ -122,7 +118,7 @@ void check_ply() {
     std::string cell;
     std::vector<double> v;
     while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
-    csv.emplace_back(v.at(2), v.at(3), v.at(4));
+    csv.emplace_back(v.at(3), v.at(4), v.at(5));
   }
   ASSERT_GT(csv.size(), 50u);
   ASSERT_EQ(ply.mesh.p_W.size(), csv.size());

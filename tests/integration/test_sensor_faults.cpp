@@ -17,9 +17,11 @@
 #include <nlohmann/json.hpp>
 
 #include "subprocess.hpp"
+#include "text_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace twinslam;
+using twinslam::test::read_text;
 
 namespace {
 
@@ -40,10 +42,6 @@ class FileLock {
 };
 
 // A file's text, or "" if it does not exist.
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 // The tiny scenario with ideal feature tracks, simulated once per build of the simulator.
 fs::path tiny_dataset() {

@@ -13,9 +13,11 @@
 #include <nlohmann/json.hpp>
 
 #include "subprocess.hpp"
+#include "text_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace twinslam;
+using twinslam::test::read_text;
 
 namespace {
 
@@ -29,10 +31,6 @@ const fs::path kWork = TWINSLAM_WRONG_TWIN_WORK_DIR;
 // building during acquisition; a block pitch, 60 m, in the aliased street).
 constexpr double kMaxRegistrationError_m = 1.5;
 
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 // `twinslam sim --scenario deploy/scenarios/NAME.yaml --features`, then `twinslam bench --modes vio-gnss,vio-twin`;
 // returns BENCH/metrics.json (null on failure, with the output in *log).

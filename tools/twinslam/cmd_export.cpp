@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "dataset_twin.hpp"
+#include "run_folder.hpp"
 #include "export_geo.hpp"
 #include "twinslam/core/csv.hpp"
 #include "twinslam/core/error.hpp"
@@ -22,47 +23,6 @@ namespace twinslam::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-nlohmann::json read_run_json(const fs::path& run) {
-  const fs::path file = run / "run.json";
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string() + ": missing (not a run folder written by `twinslam run`)");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(file.string() + ": malformed JSON: " + e.what());
-  }
-}
-
-// W's origin: run.json's (runs since exports exist), else the run's dataset's dataset.yaml.
-twin::GeoOrigin run_origin(const fs::path& run, const nlohmann::json& j) {
-  const fs::path file = run / "run.json";
-  try {
-    if (j.contains("origin") && j["origin"].is_object()) {
-      return {j["origin"].at("lat_deg").get<double>(), j["origin"].at("lon_deg").get<double>(),
-              j["origin"].at("alt_m").get<double>()};
-    }
-    const std::string dataset = j.value("dataset", "");
-    if (!dataset.empty() && fs::exists(fs::path(dataset) / "dataset.yaml")) return read_dataset_geo(dataset).origin;
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(file.string() + ": malformed origin: " + e.what());
-  }
-  throw InputError(file.string() + ": no origin of W (its dataset has no dataset.yaml origin): the run has no place "
-                   "on Earth to export");
-}
-
-// The estimate from where it entered W; InputError when it never did (mode vio: a local frame only).
-Trajectory estimate_in_W(const fs::path& run, const nlohmann::json& j) {
-  const auto from = j.find("aligned_from_stamp_ns");
-  if (from == j.end() || !from->is_number_integer()) {
-    throw InputError((run / "run.json").string() + ": the run never aligned to W (mode " + j.value("mode", "?") +
-                     "): its trajectory has no geographic position");
-  }
-  Trajectory est = read_run_trajectory(run);
-  const std::int64_t first = from->get<std::int64_t>();
-  std::erase_if(est.poses, [first](const StampedPose& p) { return p.stamp_ns < first; });
-  return est;
-}
 
 // The dataset's GNSS fixes and ground truth, when the run's dataset is still where run.json says (else a note).
 std::vector<GeoTrack> dataset_tracks(const nlohmann::json& j, const twin::EnuFrame& W) {
@@ -90,9 +50,9 @@ twin::Mesh read_landmarks(const fs::path& run) {
     throw InputError(file.string() + ": missing: only runs aligned to W record their landmarks (twin or GNSS modes)");
   }
   twin::Mesh cloud;
-  read_csv(file, 6, [&](const CsvRow& row) {
-    cloud.p_W.emplace_back(parse_double(file, row, 2, "x_W"), parse_double(file, row, 3, "y_W"),
-                           parse_double(file, row, 4, "z_W"));
+  read_csv(file, 10, [&](const CsvRow& row) {
+    cloud.p_W.emplace_back(parse_double(file, row, 3, "x_W"), parse_double(file, row, 4, "y_W"),
+                           parse_double(file, row, 5, "z_W"));
   });
   if (cloud.p_W.empty()) throw InputError(file.string() + ": no landmarks");
   return cloud;

@@ -22,6 +22,7 @@
 #include "run_pipeline.hpp"
 #include "twinslam/dds/convert.hpp"
 #include "run_record.hpp"
+#include "twin_changes_report.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
 #include "twinslam/core/progress.hpp"
@@ -73,6 +74,16 @@ RegistrationRecord to_record(const msg::Registration& m) {
   r.drpy_deg = Eigen::Vector3d(std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0)),
                                std::atan2(R(1, 0), R(0, 0))) * 180.0 / M_PI;
   return r;
+}
+
+// A twin-mode run's twin-change report (twinslam twin changes); a run that cannot be compared keeps its outputs and
+// says why on stderr.
+void write_changes_of_run(const fs::path& out, bool quiet) {
+  try {
+    write_twin_change_report(out, out, {}, /*print=*/!quiet);  // bench runs quietly: its table stays alone
+  } catch (const InputError& e) {
+    std::cerr << "twinslam run: no twin-change report: " << e.what() << std::endl;
+  }
 }
 
 int pick_domain(int requested) {
@@ -136,15 +147,24 @@ int run_pipeline(const RunOptions& o) {
   hooks.local_map = [&](const msg::LocalMap& m) {
     // The estimator sends its covariance once it has a world alignment: then the keyframe pose is in W.
     std::optional<Eigen::Isometry3d> T_WB;
+    std::vector<std::uint64_t> ids;
+    ids.reserve(m.landmarks().size());
+    for (const msg::Landmark& l : m.landmarks()) ids.push_back(l.id());
+    record.landmarks_seen(ids, m.keyframe_stamp_ns(), dds::from_msg(m.T_LB()).translation());
     if (!m.T_WB_covariance().empty()) {
       const Eigen::Isometry3d T_WL = dds::from_msg(m.T_WL());
       T_WB = T_WL * dds::from_msg(m.T_LB());
       std::vector<LandmarkRecord> in_W;
       in_W.reserve(m.landmarks().size());
       for (const msg::Landmark& l : m.landmarks()) {
-        in_W.push_back({l.id(), m.keyframe_stamp_ns(), T_WL * dds::from_msg(l.p_L()), l.quality()});
+        LandmarkRecord r;
+        r.id = l.id();
+        r.keyframe_stamp_ns = m.keyframe_stamp_ns();
+        r.p_W = T_WL * dds::from_msg(l.p_L());
+        r.quality = l.quality();
+        in_W.push_back(r);
       }
-      record.landmarks_W(in_W);
+      record.landmarks_W(in_W, T_WL);
     }
     record.local_map(m.keyframe_stamp_ns(), since_ms(), m.landmarks().size(), T_WB);
   };
@@ -289,6 +309,7 @@ int run_pipeline(const RunOptions& o) {
   }
   record.write(out);
   std::ofstream(out / "run.json") << run.dump(2) << '\n';
+  if (uses_twin(o.mode) && fs::exists(out / "landmarks.csv")) write_changes_of_run(out, o.quiet);
 
   if (o.quiet) return status == "failed" ? kExitInternal : kExitOk;
   std::printf("run %s: %s in %.1f s (mode %s, %s replay, domain %d)\n", out.string().c_str(), status.c_str(), wall_s,

@@ -119,6 +119,7 @@ int run_info(const InfoOptions& o) {
 void add_twin_command(CLI::App& app, int& exit_code) {
   CLI::App* twin = app.add_subcommand("twin", "Digital twin: build the tiled store from sources, describe a store");
   twin->require_subcommand(1);
+  add_twin_changes_command(*twin, exit_code);
 
   auto b = std::make_shared<BuildOptions>();
   CLI::App* build = twin->add_subcommand(

@@ -13,6 +13,7 @@ void add_eval_command(CLI::App& app, int& exit_code);    // cmd_eval.cpp
 void add_sim_command(CLI::App& app, int& exit_code);     // cmd_sim.cpp
 void add_bench_command(CLI::App& app, int& exit_code);   // cmd_bench.cpp
 void add_twin_command(CLI::App& app, int& exit_code);    // cmd_twin.cpp
+void add_twin_changes_command(CLI::App& twin, int& exit_code);  // cmd_twin_changes.cpp: `twin changes`
 void add_register_command(CLI::App& app, int& exit_code);  // cmd_register.cpp
 void add_gnss_command(CLI::App& app, int& exit_code);      // cmd_gnss.cpp
 void add_export_command(CLI::App& app, int& exit_code);    // cmd_export.cpp

@@ -96,13 +96,7 @@ DatasetGeo read_dataset_geo(const fs::path& root) {
   return geo;
 }
 
-fs::path dataset_twin_store(const DatasetGeo& geo, bool quiet) {
-  const twin::StoreConfig store;
-  const fs::path dir = cache_root() / "twins" / content_hash(geo, store);
-  if (fs::exists(dir / "index.json")) {
-    if (!quiet) std::printf("twin: reusing store %s\n", dir.string().c_str());
-    return dir;
-  }
+twin::Mesh load_dataset_twin(const DatasetGeo& geo) {
   twin::LoadOptions load;
   load.origin = geo.origin;
   load.crs = geo.crs;
@@ -122,6 +116,17 @@ fs::path dataset_twin_store(const DatasetGeo& geo, bool quiet) {
   }
   twin::Mesh mesh_W;
   for (const auto& file : sources) mesh_W.append(twin::load_twin_source(file.string(), load));
+  return mesh_W;
+}
+
+fs::path dataset_twin_store(const DatasetGeo& geo, bool quiet) {
+  const twin::StoreConfig store;
+  const fs::path dir = cache_root() / "twins" / content_hash(geo, store);
+  if (fs::exists(dir / "index.json")) {
+    if (!quiet) std::printf("twin: reusing store %s\n", dir.string().c_str());
+    return dir;
+  }
+  const twin::Mesh mesh_W = load_dataset_twin(geo);
   fs::create_directories(dir.parent_path());
   // Per process: two runs of the same dataset may build it at once (parallel benches, ctest).
   const fs::path tmp = dir.string() + ".tmp" + std::to_string(::getpid());

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "twinslam/twin/geo.hpp"
+#include "twinslam/twin/mesh.hpp"
 
 namespace twinslam::cli {
 
@@ -18,6 +19,10 @@ struct DatasetGeo {
 
 // From DIR/dataset.yaml; InputError naming the file and key when it is missing or malformed.
 DatasetGeo read_dataset_geo(const std::filesystem::path& dataset_root);
+
+// The dataset's twin in W, every source loaded and appended (a folder: its tileset.json, else each file in it).
+// InputError on a bad twin.
+twin::Mesh load_dataset_twin(const DatasetGeo& geo);
 
 // The store folder for the dataset's twin, built now if no store with the same hash exists under the cache
 // ($TWINSLAM_CACHE, else $HOME/.cache/twinslam). Prints one line saying which. InputError on a bad twin.

@@ -34,11 +34,24 @@ void RunRecord::local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::s
   if (T_WB_world) local_map_T_WB_.emplace(keyframe_stamp_ns, *T_WB_world);
 }
 
-void RunRecord::landmarks_W(const std::vector<LandmarkRecord>& landmarks) {
+void RunRecord::landmarks_seen(const std::vector<std::uint64_t>& ids, std::int64_t keyframe_stamp_ns,
+                               const Eigen::Vector3d& p_LB) {
   std::lock_guard lock(mutex_);
-  for (const LandmarkRecord& l : landmarks) {
+  for (const std::uint64_t id : ids) {
+    const auto [it, fresh] = first_seen_.emplace(id, std::make_pair(keyframe_stamp_ns, p_LB));
+    if (!fresh && keyframe_stamp_ns < it->second.first) it->second = {keyframe_stamp_ns, p_LB};  // out of order
+  }
+}
+
+void RunRecord::landmarks_W(const std::vector<LandmarkRecord>& landmarks, const Eigen::Isometry3d& T_WL) {
+  std::lock_guard lock(mutex_);
+  for (LandmarkRecord l : landmarks) {
     LandmarkRecord& kept = landmarks_W_[l.id];
-    if (l.keyframe_stamp_ns >= kept.keyframe_stamp_ns) kept = l;  // LocalMaps may arrive out of order
+    if (l.keyframe_stamp_ns < kept.keyframe_stamp_ns) continue;  // LocalMaps may arrive out of order
+    const auto first = first_seen_.find(l.id);
+    l.first_keyframe_stamp_ns = first != first_seen_.end() ? first->second.first : l.keyframe_stamp_ns;
+    if (first != first_seen_.end()) l.observer_W = T_WL * first->second.second;
+    kept = l;
   }
 }
 
@@ -170,11 +183,14 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
     const auto file = dir / "landmarks.csv";
     std::ofstream f(file);
     if (!f) throw InputError(file.string() + ": cannot write");
-    f << "#landmark_id,keyframe_stamp_ns,x_W [m],y_W [m],z_W [m],quality\n";
+    f << "#landmark_id,first_keyframe_stamp_ns,keyframe_stamp_ns,x_W [m],y_W [m],z_W [m],quality,observer_x_W [m],"
+         "observer_y_W [m],observer_z_W [m]\n";
     for (const auto& [id, l] : landmarks_W_) {
       char row[200];
-      std::snprintf(row, sizeof row, "%llu,%lld,%.4f,%.4f,%.4f,%.3f\n", static_cast<unsigned long long>(id),
-                    static_cast<long long>(l.keyframe_stamp_ns), l.p_W.x(), l.p_W.y(), l.p_W.z(), l.quality);
+      std::snprintf(row, sizeof row, "%llu,%lld,%lld,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.3f\n",
+                    static_cast<unsigned long long>(id), static_cast<long long>(l.first_keyframe_stamp_ns),
+                    static_cast<long long>(l.keyframe_stamp_ns), l.p_W.x(), l.p_W.y(), l.p_W.z(), l.quality,
+                    l.observer_W.x(), l.observer_W.y(), l.observer_W.z());
       f << row;
     }
     written.push_back(file);

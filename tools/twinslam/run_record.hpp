@@ -48,7 +48,11 @@ struct RegistrationRecord {
 struct LandmarkRecord {
   std::uint64_t id = 0;
   std::int64_t keyframe_stamp_ns = 0;  // of the LocalMap that carried it last
+  std::int64_t first_keyframe_stamp_ns = 0;  // of the first LocalMap that carried it (about when it was seen)
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();  // [m]
+  // Where it was seen from: the first carrying LocalMap's keyframe position, in W through the latest T_WL (so it and
+  // p_W share one alignment even when that LocalMap came before the world alignment).
+  Eigen::Vector3d observer_W = Eigen::Vector3d::Zero();  // [m]
   float quality = 0;                             // 0..1 (Landmark.quality)
 };
 
@@ -61,8 +65,12 @@ class RunRecord {
   // A LocalMap on the wire; T_WB_world: its keyframe pose when it was in W (the estimator had a world alignment).
   void local_map(std::int64_t keyframe_stamp_ns, double wall_ms, std::size_t landmarks,
                  const std::optional<Eigen::Isometry3d>& T_WB_world = std::nullopt);
-  // The landmarks of a LocalMap in W (only while aligned); a later LocalMap's estimate of an id replaces the earlier.
-  void landmarks_W(const std::vector<LandmarkRecord>& landmarks);
+  // Every LocalMap's landmarks (ids, keyframe stamp and position p_LB of its keyframe in L): remembers where each id
+  // was first seen from. Then, while aligned, their estimate in W (T_WL: the LocalMap's alignment); a later
+  // LocalMap's estimate of an id replaces the earlier. Only landmarks estimated in W are written.
+  void landmarks_seen(const std::vector<std::uint64_t>& ids, std::int64_t keyframe_stamp_ns,
+                      const Eigen::Vector3d& p_LB);
+  void landmarks_W(const std::vector<LandmarkRecord>& landmarks, const Eigen::Isometry3d& T_WL);
   void registration(RegistrationRecord r, double wall_ms);  // fills r.pipeline_latency_ms and r.keyframe_T_WB
   // Median and 99th percentile of pipeline_latency_ms over the registrations whose LocalMap was seen [ms].
   struct Latency {
@@ -91,6 +99,7 @@ class RunRecord {
   std::vector<RegistrationRecord> registrations_;
   std::vector<std::size_t> local_map_sizes_;
   std::map<std::uint64_t, LandmarkRecord> landmarks_W_;
+  std::map<std::uint64_t, std::pair<std::int64_t, Eigen::Vector3d>> first_seen_;  // id -> keyframe stamp, p_LB
 };
 
 }  // namespace twinslam::cli

@@ -122,8 +122,13 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
   summary.twin_triangles = twin.mesh.num_triangles();
 
   // Trajectory, IMU, GNSS, ground truth, dataset.yaml.
-  const TwinReference twin_ref{"twin/twin.ply", "ENU@origin", twin.missing_building_ids, twin.added_building_ids,
-                               twin.shifted_building_ids, twin.shifted_building_offsets_W};
+  TwinReference twin_ref{"twin/twin.ply", "ENU@origin", twin.missing_building_ids, twin.added_building_ids,
+                         twin.shifted_building_ids, twin.shifted_building_offsets_W};
+  for (const int id : twin.missing_building_ids) twin_ref.change_footprints.push_back({"missing", id, city.buildings[id].outline_W});
+  for (const int id : twin.shifted_building_ids) twin_ref.change_footprints.push_back({"shifted", id, city.buildings[id].outline_W});
+  for (std::size_t k = 0; k < twin.added_building_ids.size(); ++k) {
+    twin_ref.change_footprints.push_back({"added", twin.added_building_ids[k], twin.added_outlines_W[k]});
+  }
   const SensorData sensors = write_sensor_dataset(dir, scenario, city.hints, twin_ref, gnss_model(scenario, city, dir));
   summary.imu = sensors.imu.size();
   summary.gnss = sensors.gnss.size();

@@ -40,20 +40,37 @@ void append_ids(std::string& out, const char* key, const std::vector<int>& ids, 
   out += "]   # " + std::string(comment) + "\n";
 }
 
+// [[x, y], ...] of the first two coordinates of each point.
+template <typename Points>
+void append_xy_list(std::string& y, const Points& points) {
+  y += "[";
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    y += k ? ", [" : "[";
+    append_number(y, points[k].x());
+    y += ", ";
+    append_number(y, points[k].y());
+    y += "]";
+  }
+  y += "]";
+}
+
 void append_twin(std::string& y, const TwinReference& twin) {
   y += "twin:\n  path: \"" + twin.path + "\"\n  crs: \"" + twin.crs + "\"\n";
   append_ids(y, "missing_building_ids", twin.missing_building_ids, "world buildings the twin lacks");
   append_ids(y, "added_building_ids", twin.added_building_ids, "twin-only buildings");
   append_ids(y, "shifted_building_ids", twin.shifted_building_ids, "buildings the twin has elsewhere");
-  y += "  shifted_building_offsets_m: [";
-  for (std::size_t k = 0; k < twin.shifted_building_offsets_W.size(); ++k) {
-    y += k ? ", [" : "[";
-    append_number(y, twin.shifted_building_offsets_W[k].x());
-    y += ", ";
-    append_number(y, twin.shifted_building_offsets_W[k].y());
-    y += "]";
+  y += "  shifted_building_offsets_m: ";
+  append_xy_list(y, twin.shifted_building_offsets_W);
+  y += "   # their shift [east, north] in W, same order\n";
+  y += "  change_footprints_W:";
+  y += twin.change_footprints.empty() ? " []   # true footprints of the changes [m, E N]\n"
+                                      : "   # true footprints of the changes [m, E N]: missing and shifted where the "
+                                        "building really stands, added where the twin has it\n";
+  for (const auto& f : twin.change_footprints) {
+    y += "    - {kind: " + f.kind + ", building_id: " + std::to_string(f.building_id) + ", outline: ";
+    append_xy_list(y, f.outline_W);
+    y += "}\n";
   }
-  y += "]   # their shift [east, north] in W, same order\n";
 }
 
 template <typename Matrix>

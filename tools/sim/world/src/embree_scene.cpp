@@ -7,6 +7,8 @@
 
 #include <embree3/rtcore.h>
 
+#include "twinslam/twin/mesh.hpp"
+
 namespace twinslam::sim {
 
 struct EmbreeScene::Impl {
@@ -77,28 +79,6 @@ bool EmbreeScene::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, 
   return true;
 }
 
-Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                          const Eigen::Vector3d& c) {
-  // Voronoi regions of the vertices, then the edges, then the face (Ericson 5.1.5).
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 namespace {
 
 struct ClosestQuery {
@@ -112,7 +92,7 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
   auto* q = static_cast<ClosestQuery*>(args->userPtr);
   const auto& t = q->mesh->triangles[args->primID];
   const Eigen::Vector3d c =
-      closest_point_on_triangle(q->p_W, q->mesh->p_W[t[0]], q->mesh->p_W[t[1]], q->mesh->p_W[t[2]]);
+      twin::closest_point_on_triangle(q->p_W, q->mesh->p_W[t[0]], q->mesh->p_W[t[1]], q->mesh->p_W[t[2]]);
   const double d = (c - q->p_W).norm();
   if (d < q->best_m) {
     q->best_m = d;

@@ -146,6 +146,8 @@ void add_twin_only_buildings(const City& world, const TwinConfig& config, const 
     const Eigen::Vector3d lo(lot[0] + 3, lot[1] + 3, z0), hi(lot[2] - 3, lot[3] - 3, z0 + h);
     add_box(&twin->mesh, lo + config.offset_m, hi + config.offset_m, SurfaceKind::kFacade, SurfaceKind::kRoof, id);
     twin->added_building_ids.push_back(id);
+    const Eigen::Vector2d a = (lo + config.offset_m).head<2>(), b = (hi + config.offset_m).head<2>();
+    twin->added_outlines_W.push_back({a, {b.x(), a.y()}, b, {a.x(), b.y()}});
   }
 }
 

@@ -31,4 +31,8 @@ struct Mesh {
   double total_area() const;
 };
 
+// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection, 2005, sec. 5.1.5).
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c);
+
 }  // namespace twinslam::twin

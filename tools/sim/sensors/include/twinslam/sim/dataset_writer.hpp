@@ -35,6 +35,14 @@ struct TwinReference {
   std::vector<int> added_building_ids = {};
   std::vector<int> shifted_building_ids = {};
   std::vector<Eigen::Vector3d> shifted_building_offsets_W = {};  // their shift [m, W], same order
+  // The true footprint of each change (for evaluating twin-change reports): where a missing or shifted building
+  // really stands, where an added one stands in the twin.
+  struct Footprint {
+    std::string kind;  // "missing", "added", "shifted"
+    int building_id = 0;
+    std::vector<Eigen::Vector2d> outline_W;  // [m, E N]
+  };
+  std::vector<Footprint> change_footprints = {};
 };
 
 // DIR/dataset.yaml: format version, origin, twin path, CRS and changes, and the scenario echo (scenario_to_yaml).

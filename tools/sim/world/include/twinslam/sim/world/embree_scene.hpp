@@ -41,8 +41,4 @@ class EmbreeScene {
   std::unique_ptr<Impl> impl_;
 };
 
-// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection, 2005, sec. 5.1.5).
-Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                          const Eigen::Vector3d& c);
-
 }  // namespace twinslam::sim

@@ -23,6 +23,7 @@ struct Twin {
   TriMesh mesh;                          // [m, W], translated by offset_m
   std::vector<int> missing_building_ids; // world buildings absent from the twin
   std::vector<int> added_building_ids;   // twin-only buildings (ids continue after the world's)
+  std::vector<std::vector<Eigen::Vector2d>> added_outlines_W;  // their footprints [m, E N], counter-clockwise
   std::vector<int> shifted_building_ids; // world buildings misplaced in the twin, increasing
   std::vector<Eigen::Vector3d> shifted_building_offsets_W;  // their shift [m, W] (z = 0), same order
 };
