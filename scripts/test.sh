@@ -6,6 +6,16 @@
 #                                                     of tests/sanitizers/slow_tests.txt; any sanitizer report fails
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# Two gtest cases with one name in different executables become one CTest test (the other never runs, and labels
+# mix: an integration case once ran in the sanitized unit pass). Refuse such a build before running anything.
+refuse_duplicate_names() {
+  local dups
+  dups=$(ctest -N | sed -n 's/^ *Test *#[0-9]*: //p' | sort | uniq -d)
+  if [[ -n "$dups" ]]; then
+    echo "test.sh: CTest test names defined twice (rename one gtest suite): $(echo $dups)" >&2
+    exit 1
+  fi
+}
 if [[ "${1:-}" == "--sanitize" ]]; then
   shift
   build=${TWINSLAM_SANITIZE_DIR:-$root/build-sanitize}
@@ -23,9 +33,11 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   # Scenario-length unit tests are left out (tests/sanitizers/slow_tests.txt says why).
   slow=$(grep -v '^#' "$root/tests/sanitizers/slow_tests.txt" | sed 's/\./\\./g' | paste -sd'|')
   cd "$build"
+  refuse_duplicate_names
   exec ctest -j2 --output-on-failure --timeout 900 -L unit -E "^($slow)\$" "$@"
 fi
 build=${TWINSLAM_BUILD_DIR:-$root/build}
 bash "$root/scripts/setup.sh"
 cd "$build"
+refuse_duplicate_names
 ctest -j2 --output-on-failure --timeout 600 "$@"

@@ -4,6 +4,7 @@
 
 #include <opencv2/calib3d.hpp>
 #include <random>
+#include <string>
 
 #include "camera_test_util.hpp"
 #include "twinslam/camera/pinhole_radtan.hpp"
@@ -65,7 +66,11 @@ TEST_P(PinholeRadtanRoundTrip, BearingsThatLandInTheImageUnprojectBackWithin1e9)
   EXPECT_LT(worst, 1e-9);
 }
 
-INSTANTIATE_TEST_SUITE_P(Lenses, PinholeRadtanRoundTrip, ::testing::Values(euroc_cam0(), strong_radtan()));
+// Named by index: both lenses print as "radial-tangential", and CTest needs distinct names to run each.
+INSTANTIATE_TEST_SUITE_P(Lenses, PinholeRadtanRoundTrip, ::testing::Values(euroc_cam0(), strong_radtan()),
+                         [](const ::testing::TestParamInfo<CameraIntrinsics>& info) {
+                           return info.index == 0 ? std::string("EurocCam0") : std::string("StrongWideAngle");
+                         });
 
 TEST(PinholeRadtan, ProjectionJacobianMatchesCentralDifferences) {
   for (const auto& in : {euroc_cam0(), strong_radtan()}) {

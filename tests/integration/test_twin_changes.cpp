@@ -102,14 +102,14 @@ void expect_found(const std::string& name) {
 
 }  // namespace
 
-TEST(TwinChanges, NothingIsReportedWhereTheTwinIsRight) {
+TEST(TwinChangeScenarios, NothingIsReportedWhereTheTwinIsRight) {
   const Report r = report("none");
   ASSERT_TRUE(r.truth.empty()) << r.log;
   ASSERT_NE(r.log.find("twin changes: 0 found"), std::string::npos) << r.log;
 }
 
-TEST(TwinChanges, ABuildingMissingFromTheTwinIsFound) { expect_found("missing"); }
+TEST(TwinChangeScenarios, ABuildingMissingFromTheTwinIsFound) { expect_found("missing"); }
 
-TEST(TwinChanges, ABuildingOnlyTheTwinHasIsFound) { expect_found("added"); }
+TEST(TwinChangeScenarios, ABuildingOnlyTheTwinHasIsFound) { expect_found("added"); }
 
-TEST(TwinChanges, ABuildingTheTwinPlacesThreeMetresOffIsFound) { expect_found("shifted"); }
+TEST(TwinChangeScenarios, ABuildingTheTwinPlacesThreeMetresOffIsFound) { expect_found("shifted"); }
