@@ -100,6 +100,21 @@ TEST(TileStreamer, FailedPublicationIsRetried) {
   EXPECT_EQ(s.update("uav0", {25, 25, 11}).publish, (std::vector<TileKey>{{0, 0}}));
 }
 
+TEST(TileStreamer, AFailedReSendLeavesTheLatchedTileCountedOnTheWire) {
+  // The writer still latches a tile whose re-send failed: it must keep counting against the instance limit, or more
+  // tiles than the writer can hold go out (found by fuzzing the tiles handler with failing writes).
+  TileStreamer s(test::grid_index(-10, 9), 150.0, 9);
+  ASSERT_EQ(s.update("uav0", {25, 25, 10}).publish.size(), 9u);
+  const StreamDecision r = s.request("uav0", {25, 25}, 75.0, {});
+  ASSERT_EQ(r.publish.size(), 9u);
+  for (const TileKey& k : r.publish) s.publish_failed(k);
+  EXPECT_EQ(s.published_count(), 9u);
+  EXPECT_FALSE(s.holds("uav0", {0, 0}));
+  const StreamDecision next = s.update("uav1", {225, 25, 10});  // another window: the writer is full
+  EXPECT_TRUE(next.publish.empty());
+  EXPECT_EQ(next.over_limit.size(), 9u);
+}
+
 TEST(TileStreamer, StopsPublishingAtTheWritersInstanceLimit) {
   TileStreamer s(test::grid_index(-10, 9), 150.0, 12);  // the writer can latch 12 tiles
   EXPECT_EQ(s.update("uav0", {25, 25, 10}).publish.size(), 9u);
@@ -170,6 +185,20 @@ TEST(TileGrid, SparseTwinWithoutACellTable) {
                                {1001, 999}, {1001, 1000}, {1001, 1001}}));
   EXPECT_EQ(g.tiles_in({{25, 25}, 75}).size(), 9u);
   EXPECT_TRUE(g.tiles_in({{25000, 25000}, 75}).empty());
+}
+
+TEST(TileGrid, WindowsBeyondTheIntRangeAreEmptyNotAnEndlessLoop) {
+  // A diverged estimate or a forged sample puts the vehicle 10^12 m away: (c - h) / s does not fit an int, and the
+  // cast once wrapped the column range to [INT_MIN, INT_MAX] (a hang found by fuzzing the tiles handler).
+  const TileGrid g(test::grid_index(-2, 2));
+  for (const double c : {1e12, -1e12, 1e300, -1e300}) {
+    EXPECT_TRUE(g.tiles_in({{c, 25}, 75}).empty()) << c;
+    EXPECT_TRUE(g.tiles_in({{25, c}, 75}).empty()) << c;
+  }
+  EXPECT_EQ(g.tiles_in({{25, 25}, 1e300}).size(), 25u);  // a huge window around the twin holds all of it
+  TileStreamer s(test::grid_index(-2, 2), 150.0);
+  EXPECT_TRUE(s.update("uav0", {1e12, 0, 0}).new_for_vehicle.empty());
+  EXPECT_EQ(s.update("uav0", {25, 25, 0}).new_for_vehicle.size(), 9u);
 }
 
 }  // namespace

@@ -1,9 +1,8 @@
 #include "ingest_node.hpp"
 
+#include "ack_book.hpp"
+
 #include <cmath>
-#include <map>
-#include <set>
-#include <mutex>
 #include <stdexcept>
 #include <thread>
 
@@ -20,7 +19,12 @@ using Clock = std::chrono::steady_clock;
 class IngestNode::Impl {
  public:
   Impl(dds::Node& node, const Dataset& ds, IngestOptions opt, const FeatureReplay* features)
-      : node_(node), ds_(ds), opt_(std::move(opt)), features_(features), heartbeat_(node, counters_) {
+      : node_(node),
+        ds_(ds),
+        opt_(std::move(opt)),
+        features_(features),
+        heartbeat_(node, counters_),
+        acks_(node.config().vehicle_id) {
     if (features_ != nullptr) {
       camera_ = make_camera(features_->camera.intrinsics);
       features_w_ = node.writer<msg::FeatureFrame>(dds::topics::kFeatures, dds::writer_profile(dds::QosFamily::Sensor,
@@ -29,12 +33,7 @@ class IngestNode::Impl {
     imu_ = node.writer<msg::Imu>(dds::topics::kImu);
     image_ = node.writer<msg::Image>(dds::topics::kImage);
     gnss_ = node.writer<msg::GnssFix>(dds::topics::kGnss);
-    node.subscribe<msg::FrameAck>(dds::topics::kFrameAck, [this](const msg::FrameAck& ack) {
-      if (ack.vehicle_id() != node_.config().vehicle_id) return;
-      std::lock_guard lock(mutex_);
-      auto& last = acked_[ack.service()];
-      last = std::max(last, ack.stamp_ns());
-    });
+    node.subscribe<msg::FrameAck>(dds::topics::kFrameAck, [this](const msg::FrameAck& ack) { acks_.on_ack(ack); });
     heartbeat_.set_state(msg::SVC_READY);
   }
 
@@ -84,20 +83,11 @@ class IngestNode::Impl {
           (!ds_.gnss.empty() && gnss_.matched_readers() < opt_.wait_readers.gnss)) {
         return false;
       }
-      std::lock_guard lock(mutex_);
-      for (const auto& s : opt_.ack_from) {
-        if (!ready_services_.count(s)) return false;
-      }
-      return true;
+      return acks_.all_ready(opt_.ack_from);
     };
     if (!opt_.ack_from.empty()) {
       // A service is ready once it announced READY: its readers and its ack writer exist by then.
-      node_.subscribe<msg::Heartbeat>(dds::topics::kHeartbeat, [this](const msg::Heartbeat& hb) {
-        if (hb.state() == msg::SVC_READY || hb.state() == msg::SVC_RUNNING) {
-          std::lock_guard lock(mutex_);
-          ready_services_.insert(hb.service());
-        }
-      });
+      node_.subscribe<msg::Heartbeat>(dds::topics::kHeartbeat, [this](const msg::Heartbeat& hb) { acks_.on_heartbeat(hb); });
     }
     while (!ready()) {
       if (shutdown_requested()) return false;
@@ -123,15 +113,7 @@ class IngestNode::Impl {
     }
     const auto deadline = Clock::now() + opt_.ack_timeout;
     while (true) {
-      {
-        std::lock_guard lock(mutex_);
-        bool all = true;
-        for (const auto& s : opt_.ack_from) {
-          const auto it = acked_.find(s);
-          all = all && it != acked_.end() && it->second >= stamp;
-        }
-        if (all) return;
-      }
+      if (acks_.all_acked(opt_.ack_from, stamp)) return;
       if (shutdown_requested()) return;
       if (Clock::now() > deadline) {
         throw std::runtime_error("frame " + std::to_string(stamp) + " not acknowledged within " +
@@ -257,9 +239,7 @@ class IngestNode::Impl {
   dds::Writer<msg::Imu> imu_;
   dds::Writer<msg::Image> image_;
   dds::Writer<msg::GnssFix> gnss_;
-  std::mutex mutex_;
-  std::map<std::string, std::int64_t> acked_;
-  std::set<std::string> ready_services_;
+  AckBook acks_;
   unsigned long long imu_seq_ = 0, image_seq_ = 0, gnss_seq_ = 0, feature_seq_ = 0;
 };
 

@@ -87,8 +87,13 @@ std::vector<twin::TileKey> TileGrid::tiles_in(const Window& window) const {
   auto range = [&](double c, int lo, int hi, int* first, int* last) {
     const double a = std::max(std::floor((c - h) / s), static_cast<double>(lo));
     const double b = std::min(std::ceil((c + h) / s) - 1.0, static_cast<double>(hi));
+    if (!(a <= b)) {  // beyond the stored range (or NaN from inf - inf): a or b may not fit an int
+      *first = 0;
+      *last = -1;
+      return;
+    }
     *first = static_cast<int>(a);
-    *last = a <= b ? static_cast<int>(b) : *first - 1;
+    *last = static_cast<int>(b);
   };
   int ix0, ix1, iy0, iy1;
   range(window.center_W.x(), min_ix_, max_ix_, &ix0, &ix1);

@@ -15,6 +15,7 @@ bool TileStreamer::admit(KeySet& held, const twin::TileKey& key, bool* newly_pub
   if (published_.count(key) == 0) {
     if (published_.size() >= max_on_wire_) return false;
     published_.insert(key);
+    first_writes_.insert(key);
     *newly_published = true;
   }
   held.insert(key);
@@ -45,6 +46,7 @@ void TileStreamer::admit_window(KeySet& held, const Window& window, StreamDecisi
 
 StreamDecision TileStreamer::update(const std::string& vehicle, const Eigen::Vector3d& p_W) {
   StreamDecision d;
+  first_writes_.clear();
   if (!p_W.allFinite()) return d;
   const Eigen::Vector2d p = p_W.head<2>();
   admit_window(held_[vehicle], {p, half_size_m_}, d);
@@ -61,13 +63,17 @@ StreamDecision TileStreamer::request(const std::string& vehicle, const Eigen::Ve
   KeySet& held = held_[vehicle];
   held = KeySet(have.begin(), have.end());
   StreamDecision d;
+  first_writes_.clear();
   admit_window(held, {center_W, half_size_m}, d);
   d.publish = d.new_for_vehicle;  // the requester says it lacks them: latched or not, send them again
   return d;
 }
 
 void TileStreamer::publish_failed(const twin::TileKey& key) {
-  published_.erase(key);
+  // Only a failed first write leaves the tile off the wire. A failed re-send (a request) leaves the writer's latched
+  // sample of that instance, which still counts against max_on_wire: forgetting it let a fuzzed run of requests with
+  // failing writes latch more tiles than the writer can hold.
+  if (first_writes_.erase(key) != 0) published_.erase(key);
   for (auto& [vehicle, held] : held_) held.erase(key);
 }
 

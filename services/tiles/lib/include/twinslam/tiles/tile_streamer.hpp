@@ -43,7 +43,8 @@ class TileStreamer {
   StreamDecision request(const std::string& vehicle, const Eigen::Vector2d& center_W, double half_size_m,
                          const std::vector<twin::TileKey>& have);
 
-  // The publication of `key` failed: nobody holds it, so the next update that needs it sends it again.
+  // The publication of `key` from the last decision failed: nobody holds it, so the next update that needs it sends
+  // it again. If it was the tile's first write it is not on the wire; a failed re-send leaves the latched sample.
   void publish_failed(const twin::TileKey& key);
 
   const TileGrid& grid() const { return grid_; }
@@ -68,6 +69,7 @@ class TileStreamer {
   std::size_t max_on_wire_;
   std::unordered_map<std::string, KeySet> held_;  // vehicle id -> tiles it holds
   KeySet published_;                              // tiles written on the wire (latched for every reader)
+  KeySet first_writes_;                           // of those, the ones first written by the last decision
 };
 
 }  // namespace twinslam::tiles
