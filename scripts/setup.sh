@@ -18,6 +18,20 @@ if (( ${#missing[@]} )); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
+# The official MCAP reader (@mcap/core) and Foxglove's OMG IDL decoder (@foxglove/omgidl-*), in tests/node, check
+# that Foxglove can read our MCAP files (McapNode.OfficialReaderReadsTheSampleFile, McapRecording.*). npm ci installs exactly package-lock.json; rerun only when
+# node_modules is missing or older than the lock file (npm rewrites node_modules/.package-lock.json on every install).
+node_dir=$root/tests/node
+installed=$node_dir/node_modules/.package-lock.json
+if [[ ! -f "$installed" || "$node_dir/package-lock.json" -nt "$installed" ]]; then
+  if command -v npm >/dev/null; then
+    echo "setup: npm ci in tests/node" >&2
+    (cd "$node_dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+  else
+    echo "setup: npm not found: the MCAP official-reader test will fail" >&2
+  fi
+fi
+
 [[ -n "${TWINSLAM_SETUP_PACKAGES_ONLY:-}" ]] && exit 0
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
 # Two jobs: a 2-core, 24 GB machine; translation units with PCL (later) need ~2 GB each.

@@ -16,6 +16,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "modes.hpp"
+#include "mcap_recorder.hpp"
 #include "monitor.hpp"
 #include "dataset_twin.hpp"
 #include "run_config_dir.hpp"
@@ -169,6 +170,12 @@ int run_pipeline(const RunOptions& o) {
     record.local_map(m.keyframe_stamp_ns(), since_ms(), m.landmarks().size(), T_WB);
   };
   hooks.registration = [&](const msg::Registration& m) { record.registration(to_record(m), since_ms()); };
+  // Declared before the monitor: its readers (which record into it) close first.
+  std::unique_ptr<McapRecorder> mcap;
+  if (o.mcap) {
+    mcap = std::make_unique<McapRecorder>((out / "run.mcap").string());
+    hooks.cdr = [&mcap](const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) { mcap->record(topic, cdr); };
+  }
   TopicMonitor monitor(recorder, /*reliable=*/true, hooks);
 
   const std::string replay = o.realtime ? "--realtime" : "--max";
@@ -307,6 +314,12 @@ int run_pipeline(const RunOptions& o) {
                    {"weights", o.weights},
                    {"initial_alignment", o.initial_pose.empty() ? std::string("gnss") : "pose " + o.initial_pose}};
   }
+  if (mcap) {
+    mcap->close();  // every service has stopped: nothing of the run is still on its way
+    nlohmann::json counts = nlohmann::json::object();
+    for (const auto& [topic, n] : mcap->counts()) counts[topic] = n;
+    run["mcap"] = {{"file", "run.mcap"}, {"messages", counts}};
+  }
   record.write(out);
   std::ofstream(out / "run.json") << run.dump(2) << '\n';
   if (uses_twin(o.mode) && fs::exists(out / "landmarks.csv")) write_changes_of_run(out, o.quiet);
@@ -346,6 +359,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
                   "Twin modes without GNSS: \"E N U YAW_DEG\", the body's pose in W at the first estimate");
   cmd->add_option("--config-dir", o->config_dir, "Folder of <service>.yaml configs (e.g. deploy/config)");
   cmd->add_flag("--no-progress", o->no_progress, "No progress bar on stderr");
+  cmd->add_flag("--mcap", o->mcap, "Record every topic to RUN/run.mcap (CDR messages, OMG IDL schemas)");
   cmd->callback([o, &exit_code] {
     o->progress = !o->no_progress;
     exit_code = run_pipeline(*o);

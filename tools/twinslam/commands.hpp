@@ -17,5 +17,6 @@ void add_twin_changes_command(CLI::App& twin, int& exit_code);  // cmd_twin_chan
 void add_register_command(CLI::App& app, int& exit_code);  // cmd_register.cpp
 void add_gnss_command(CLI::App& app, int& exit_code);      // cmd_gnss.cpp
 void add_export_command(CLI::App& app, int& exit_code);    // cmd_export.cpp
+void add_record_command(CLI::App& app, int& exit_code);    // cmd_record.cpp
 
 }  // namespace twinslam::cli

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "twinslam/dds/cdr.hpp"
 #include "twinslam/dds/dispatch.hpp"
 #include "twinslam/dds/msg_json.hpp"
 
@@ -26,7 +27,8 @@ TopicMonitor::TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks) :
   for (const auto& spec : dds::topics::kAll) {
     const auto profile = reliable ? dds::reader_profile(spec.family) : dds::kMonitorReaderProfile;
     if (spec.name == dds::topics::kHeartbeat.name) {
-      const auto& st = node.subscribe<msg::Heartbeat>(spec, [this](const msg::Heartbeat& hb) {
+      const auto& st = node.subscribe<msg::Heartbeat>(spec, [this, &spec](const msg::Heartbeat& hb) {
+        if (hooks_.cdr) hooks_.cdr(spec, dds::to_cdr(hb));
         ServiceInfo info{hb.service(), hb.instance(), hb.vehicle_id(), dds::to_string(hb.state()), hb.uptime_ms(), {}};
         for (const auto& c : hb.counters()) info.counters[c.name()] = c.value();
         std::lock_guard lock(mutex_);
@@ -37,7 +39,8 @@ TopicMonitor::TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks) :
     }
     dds::with_message_type(spec, [&]<class T>() {
       const auto* hook = hook_for<T>(hooks_);
-      const auto& st = node.subscribe<T>(spec, [hook](const T& m) {
+      const auto& st = node.subscribe<T>(spec, [this, hook, &spec](const T& m) {
+        if (hooks_.cdr) hooks_.cdr(spec, dds::to_cdr(m));
         if (hook != nullptr && *hook) (*hook)(m);
       }, profile);
       entries_.push_back({&spec, &st});

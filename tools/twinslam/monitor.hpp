@@ -1,6 +1,7 @@
 #pragma once
 // Watches every topic of the table: message counts, matched writers, and the latest heartbeat of each service.
 // Used by `twinslam topics` (best effort, never slows the pipeline) and by `twinslam run` (reliable, exact counts).
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -31,6 +32,8 @@ struct MonitorHooks {
   std::function<void(const msg::Odometry&)> odometry;
   std::function<void(const msg::Registration&)> registration;
   std::function<void(const msg::LocalMap&)> local_map;
+  // Every message of every topic as its CDR bytes (dds/cdr.hpp), e.g. for an MCAP recording; serialized only when set.
+  std::function<void(const dds::TopicSpec&, const std::vector<std::uint8_t>&)> cdr;
 };
 
 class TopicMonitor {

@@ -1,0 +1,52 @@
+#include "mcap_recorder.hpp"
+
+#include <chrono>
+
+#include <twinslam/IdlText.h>
+
+#include "twinslam/mcap/writer.hpp"
+
+namespace twinslam::cli {
+
+McapRecorder::McapRecorder(const std::string& path) : path_(path), writer_(std::make_unique<mcap::Writer>(path)) {
+  std::map<std::string_view, std::uint16_t> schemas;  // by type name: several topics may share a type
+  for (const dds::TopicSpec& t : dds::topics::kAll) {
+    auto it = schemas.find(t.type_name);
+    if (it == schemas.end()) {
+      it = schemas.emplace(t.type_name, writer_->add_schema(std::string(t.type_name), "omgidl",
+                                                            std::string(msg::kIdlText)))
+               .first;
+    }
+    channels_[t.name].id = writer_->add_channel(it->second, std::string(t.name), "cdr");
+  }
+}
+
+McapRecorder::~McapRecorder() = default;  // the Writer closes the file if close() was not called
+
+void McapRecorder::record(const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) {
+  const auto now = std::chrono::system_clock::now().time_since_epoch();
+  const auto log_time_ns = static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(now).count());
+  std::lock_guard lock(mutex_);
+  if (closed_) return;
+  const auto it = channels_.find(topic.name);
+  if (it == channels_.end()) return;  // not a topic of the table: nothing to record it as
+  Channel& c = it->second;
+  writer_->write(c.id, c.sequence++, log_time_ns, log_time_ns, cdr.data(), cdr.size());
+  ++c.count;
+}
+
+void McapRecorder::close() {
+  std::lock_guard lock(mutex_);
+  if (closed_) return;
+  closed_ = true;
+  writer_->close();
+}
+
+std::map<std::string, std::uint64_t> McapRecorder::counts() const {
+  std::lock_guard lock(mutex_);
+  std::map<std::string, std::uint64_t> out;
+  for (const auto& [name, c] : channels_) out[std::string(name)] = c.count;
+  return out;
+}
+
+}  // namespace twinslam::cli
