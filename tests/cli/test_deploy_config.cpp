@@ -9,6 +9,7 @@
 
 #include "estimator_config.hpp"
 #include "tracking_config.hpp"
+#include "twinslam/bridge/bridge_config.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/yaml_fields.hpp"
 #include "twinslam/ingest/ingest_config.hpp"
@@ -55,6 +56,10 @@ std::vector<Service> services() {
       {"ingest.yaml", [] { return values_of(ingest::IngestConfig{}, ingest::bind_ingest_config); },
        [](const fs::path& p) {
          return values_of(ingest::load_ingest_config(p.string()), ingest::bind_ingest_config);
+       }},
+      {"bridge.yaml", [] { return values_of(bridge::BridgeConfig{}, bridge::bind_bridge_config); },
+       [](const fs::path& p) {
+         return values_of(bridge::load_bridge_config(p.string()), bridge::bind_bridge_config);
        }},
   };
 }

@@ -53,7 +53,7 @@ TEST(McapRecording, ATinyRunAndARecordOfItReadBackWithTheOfficialReaders) {
   const auto run = test::run_process({test::bin("twinslam"), "run", (base() / "tiny").string(), "--mode", "vio-twin",
                                       "--features", "--no-progress", "--mcap", "--out", (base() / "run").string(),
                                       "--domain", domain},
-                                     {}, std::chrono::seconds(240));
+                                     {}, std::chrono::seconds(420));
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   record.signal(SIGINT);
   ASSERT_EQ(record.wait(std::chrono::seconds(30)), 0) << record.output();

@@ -186,6 +186,7 @@ int run_pipeline(const RunOptions& o) {
     services.push_back("tiles");
     services.push_back("registration");
   }
+  if (o.bridge_port >= 0) services.push_back("bridge");
   process::Supervisor supervisor({out / "logs"});
   const std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", std::to_string(domain)}};
   for (const auto& s : services) {
@@ -194,6 +195,7 @@ int run_pipeline(const RunOptions& o) {
     if (s == "tracking") args.insert(args.end(), {"--camera", camera});
     if (s == "tiles") args.insert(args.end(), {"--twin", twin_store.string()});
     if (s == "registration") args.insert(args.end(), {"--weights", o.weights});
+    if (s == "bridge") args = {"--vehicle", "", replay, "--port", std::to_string(o.bridge_port)};  // every vehicle
     if (s == "estimator") {
       args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
       if (geo) args.insert(args.end(), {"--origin", origin_text(geo->origin)});
@@ -213,7 +215,7 @@ int run_pipeline(const RunOptions& o) {
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
     process::ProcessSpec spec{s, "twinslam-" + s, args, env, {}, false};
     // The edge services come back after a crash (issue 14): the estimator flies on without them meanwhile.
-    spec.restart_on_failure = s == "tiles" || s == "registration";
+    spec.restart_on_failure = s == "tiles" || s == "registration" || s == "bridge";
     supervisor.start(spec);
   }
   const auto ready_deadline = std::chrono::steady_clock::now() +
@@ -226,12 +228,15 @@ int run_pipeline(const RunOptions& o) {
   }
   // Readers ingest must see before its first sample: every subscriber of each stream plus this recorder.
   // Camera frames (images, or feature frames with --features) go to tracking or to the estimator.
-  const int imu_readers = o.features ? 2 : 3;
+  // The bridge subscribes to every stream: one more reader of each.
+  const int viewer = o.bridge_port >= 0 ? 1 : 0;
+  const int imu_readers = (o.features ? 2 : 3) + viewer;
   // GNSS: this recorder, the estimator (global inputs, sensor_worker.hpp), and tiles in twin modes.
-  const int gnss_readers = 2 + (uses_twin(o.mode) ? 1 : 0);
+  const int gnss_readers = 2 + (uses_twin(o.mode) ? 1 : 0) + viewer;
   std::vector<std::string> ingest_args{"--dataset", dataset.root.string(), "--vehicle", o.vehicle, replay,
                                        "--wait-readers",
-                                       "imu=" + std::to_string(imu_readers) + ",image=2,gnss=" +
+                                       "imu=" + std::to_string(imu_readers) + ",image=" + std::to_string(2 + viewer) +
+                                           ",gnss=" +
                                            std::to_string(dataset.gnss.empty() ? 0 : gnss_readers)};
   if (o.features) ingest_args.push_back("--features");
   for (auto& a : config_args(o.config_dir, "ingest")) ingest_args.push_back(std::move(a));
@@ -360,6 +365,8 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--config-dir", o->config_dir, "Folder of <service>.yaml configs (e.g. deploy/config)");
   cmd->add_flag("--no-progress", o->no_progress, "No progress bar on stderr");
   cmd->add_flag("--mcap", o->mcap, "Record every topic to RUN/run.mcap (CDR messages, OMG IDL schemas)");
+  cmd->add_option("--bridge", o->bridge_port, "Serve the run live to Foxglove on this port (twinslam-bridge)")
+      ->check(CLI::Range(0, 65535));
   cmd->callback([o, &exit_code] {
     o->progress = !o->no_progress;
     exit_code = run_pipeline(*o);

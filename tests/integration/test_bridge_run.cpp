@@ -1,0 +1,79 @@
+// The Foxglove bridge during a real tiny run (issue 16 item 1): `twinslam run --bridge PORT` starts twinslam-bridge
+// with the pipeline, and a Foxglove WebSocket client (tests/node/bridge_client.mjs: @foxglove/ws-protocol over `ws`,
+// the way Foxglove connects) subscribes to every advertised channel; every message it receives decodes with the OMG
+// IDL schema its channel advertised (@foxglove/omgidl-*), and the run's streams reach it live.
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "subprocess.hpp"
+
+namespace fs = std::filesystem;
+using namespace twinslam;
+
+namespace {
+
+const fs::path& base() {
+  static const fs::path dir = fs::temp_directory_path() / ("twinslam_bridge_" + std::to_string(::getpid()));
+  return dir;
+}
+
+// A TCP port nobody listens on now (the kernel's pick for port 0).
+int free_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof a;
+  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  ::close(fd);
+  return ntohs(a.sin_port);
+}
+
+// The last line of the client's output: its JSON verdict.
+nlohmann::json last_json_line(const std::string& output) {
+  std::istringstream in(output);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.front() == '{') last = line;
+  }
+  return last.empty() ? nlohmann::json() : nlohmann::json::parse(last);
+}
+
+TEST(FoxgloveBridge, AClientSubscribedToEveryChannelDecodesTheRunLive) {
+  fs::remove_all(base());
+  const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--out",
+                                      (base() / "tiny").string(), "--features", "--quiet"},
+                                     {}, std::chrono::seconds(180));
+  ASSERT_EQ(sim.exit_code, 0) << sim.out << sim.err;
+  const std::string port = std::to_string(free_port());
+  // Started first: it retries until the bridge listens, as an operator's Foxglove would.
+  test::Background client({TWINSLAM_NODE, std::string(TWINSLAM_SOURCE_DIR) + "/tests/node/bridge_client.mjs",
+                           "ws://127.0.0.1:" + port, "480"});
+  const auto run = test::run_process({test::bin("twinslam"), "run", (base() / "tiny").string(), "--mode", "vio-twin",
+                                      "--features", "--no-progress", "--bridge", port, "--out",
+                                      (base() / "run").string(), "--domain", std::to_string(test::test_domain())},
+                                     {}, std::chrono::seconds(420));
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  ASSERT_EQ(client.wait(std::chrono::seconds(30)), 0) << client.output();  // the bridge closed: the client reports
+  const nlohmann::json got = last_json_line(client.output());
+  ASSERT_FALSE(got.is_null()) << client.output();
+  EXPECT_EQ(got["server"], "twinslam-bridge");
+  EXPECT_EQ(got["channels"], 11);  // every topic of the table
+  EXPECT_NE(std::find(got["vehicles"].begin(), got["vehicles"].end(), "uav0"), got["vehicles"].end()) << got.dump();
+  for (const char* topic : {"twinslam/v1/imu", "twinslam/v1/features", "twinslam/v2/odometry", "twinslam/v2/local_map",
+                            "twinslam/v3/registration", "twinslam/v1/heartbeat"}) {
+    EXPECT_GT(got["counts"].value(topic, 0), 0) << topic << " in " << got.dump();
+  }
+  fs::remove_all(base());
+}
+
+}  // namespace

@@ -1,0 +1,73 @@
+// node tests/node/bridge_client.mjs URL SECONDS — a Foxglove WebSocket client (@foxglove/ws-protocol over `ws`, as
+// Foxglove connects) against twinslam-bridge: retries until the bridge listens, subscribes to every advertised
+// channel and decodes every message with the schema its channel advertised (@foxglove/omgidl-*). Ends when the bridge
+// closes the connection (the run ended) or after SECONDS; prints one JSON object {server, channels, counts,
+// vehicles}; exits 1 with a one-line error if a message does not decode or nothing was advertised.
+import wsProtocol from "@foxglove/ws-protocol";
+import { parseIDL } from "@foxglove/omgidl-parser";
+import { MessageReader } from "@foxglove/omgidl-serialization";
+import { WebSocket } from "ws";
+
+const { FoxgloveClient } = wsProtocol;
+
+function fail(message) {
+  console.error(`bridge_client: ${message}`);
+  process.exit(1);
+}
+
+const [url, secondsText] = process.argv.slice(2);
+if (!url || !secondsText) fail("usage: node bridge_client.mjs URL SECONDS");
+const deadline = Date.now() + Number(secondsText) * 1000;
+
+const result = { server: null, channels: 0, counts: {}, vehicles: [] };
+const vehicles = new Set();
+
+// The client's handlers are attached before the socket opens: the bridge sends serverInfo and advertise at once.
+function attach(client) {
+  const bySubscription = new Map();
+  client.on("serverInfo", (info) => { result.server = info.name; });
+  client.on("advertise", (channels) => {
+    for (const c of channels) {
+      if (c.encoding !== "cdr" || c.schemaEncoding !== "omgidl") fail(`${c.topic}: ${c.encoding} / ${c.schemaEncoding}`);
+      const reader = new MessageReader(c.schemaName, parseIDL(c.schema));
+      bySubscription.set(client.subscribe(c.id), { topic: c.topic, type: c.schemaName, reader });
+      result.channels++;
+    }
+  });
+  client.on("message", ({ subscriptionId, data }) => {
+    const s = bySubscription.get(subscriptionId) ?? fail(`message for unknown subscription ${subscriptionId}`);
+    let decoded;
+    try {
+      decoded = s.reader.readMessage(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+    } catch (e) {
+      fail(`${s.topic}: a message does not decode as ${s.type}: ${e.message}`);
+    }
+    if (typeof decoded.vehicle_id === "string" && decoded.vehicle_id !== "") vehicles.add(decoded.vehicle_id);
+    result.counts[s.topic] = (result.counts[s.topic] ?? 0) + 1;
+  });
+  client.on("status", (s) => { if (s.level >= 2) fail(`server status: ${s.message}`); });
+}
+
+function connect() {
+  return new Promise((resolve) => {
+    const ws = new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]);
+    ws.once("error", () => resolve(null));  // not listening yet
+    ws.once("open", () => resolve(ws));
+    attach(new FoxgloveClient({ ws }));
+  });
+}
+
+let ws = null;
+while (!(ws = await connect())) {
+  if (Date.now() > deadline) fail(`${url}: no bridge listening`);
+  await new Promise((r) => setTimeout(r, 200));
+}
+
+await new Promise((resolve) => {
+  ws.once("close", resolve);
+  setTimeout(resolve, Math.max(0, deadline - Date.now()));
+});
+if (result.channels === 0) fail(`${url}: no channel advertised`);
+result.vehicles = [...vehicles].sort();
+console.log(JSON.stringify(result));
+process.exit(0);
