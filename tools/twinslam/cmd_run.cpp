@@ -174,7 +174,9 @@ int run_pipeline(const RunOptions& o) {
   std::unique_ptr<McapRecorder> mcap;
   if (o.mcap) {
     mcap = std::make_unique<McapRecorder>((out / "run.mcap").string());
-    hooks.cdr = [&mcap](const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) { mcap->record(topic, cdr); };
+    hooks.cdr = [&mcap](const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) {
+      mcap->record(topic, cdr);
+    };
   }
   TopicMonitor monitor(recorder, /*reliable=*/true, hooks);
 

@@ -1,9 +1,8 @@
 #include "mcap_recorder.hpp"
 
-#include <chrono>
-
 #include <twinslam/IdlText.h>
 
+#include "twinslam/core/wall_clock.hpp"
 #include "twinslam/mcap/writer.hpp"
 
 namespace twinslam::cli {
@@ -24,8 +23,7 @@ McapRecorder::McapRecorder(const std::string& path) : path_(path), writer_(std::
 McapRecorder::~McapRecorder() = default;  // the Writer closes the file if close() was not called
 
 void McapRecorder::record(const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) {
-  const auto now = std::chrono::system_clock::now().time_since_epoch();
-  const auto log_time_ns = static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(now).count());
+  const std::uint64_t log_time_ns = unix_time_ns();
   std::lock_guard lock(mutex_);
   if (closed_) return;
   const auto it = channels_.find(topic.name);

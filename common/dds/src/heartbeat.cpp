@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include "twinslam/core/wall_clock.hpp"
+
 namespace twinslam::dds {
 
 void Counters::add(const std::string& name, unsigned long long n) {
@@ -63,9 +65,7 @@ void HeartbeatPublisher::beat() {
   hb.instance(instance_);
   hb.vehicle_id(node_.config().vehicle_id);
   hb.state(state_.load());
-  hb.wall_ns(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                 std::chrono::system_clock::now().time_since_epoch())
-                 .count());
+  hb.wall_ns(static_cast<long long>(unix_time_ns()));
   hb.uptime_ms(static_cast<unsigned long long>(
       std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start_).count()));
   for (const auto& [name, value] : counters_.snapshot()) {

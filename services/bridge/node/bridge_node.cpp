@@ -1,9 +1,8 @@
 #include "bridge_node.hpp"
 
-#include <chrono>
-
 #include <twinslam/IdlText.h>
 
+#include "twinslam/core/wall_clock.hpp"
 #include "twinslam/dds/cdr.hpp"
 #include "twinslam/dds/dispatch.hpp"
 
@@ -31,9 +30,7 @@ BridgeNode::BridgeNode(dds::Node& node, dds::Counters& counters, const BridgeCon
       node.subscribe<T>(spec, [this, channel, &counters](const T& m) {
         counters.add("messages_in");
         if (server_.clients() == 0) return;  // nobody watches: no serialization
-        const auto now = std::chrono::system_clock::now().time_since_epoch();
-        server_.publish(channel, static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(now).count()),
-                        std::make_shared<const std::vector<std::uint8_t>>(dds::to_cdr(m)));
+        server_.publish(channel, unix_time_ns(), std::make_shared<const std::vector<std::uint8_t>>(dds::to_cdr(m)));
       }, profile);
     });
   }

@@ -87,7 +87,8 @@ class IngestNode::Impl {
     };
     if (!opt_.ack_from.empty()) {
       // A service is ready once it announced READY: its readers and its ack writer exist by then.
-      node_.subscribe<msg::Heartbeat>(dds::topics::kHeartbeat, [this](const msg::Heartbeat& hb) { acks_.on_heartbeat(hb); });
+      node_.subscribe<msg::Heartbeat>(dds::topics::kHeartbeat,
+                                      [this](const msg::Heartbeat& hb) { acks_.on_heartbeat(hb); });
     }
     while (!ready()) {
       if (shutdown_requested()) return false;
