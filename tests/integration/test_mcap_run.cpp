@@ -52,7 +52,7 @@ TEST(McapRecording, ATinyRunAndARecordOfItReadBackWithTheOfficialReaders) {
   test::Background record({test::bin("twinslam"), "record", (base() / "record.mcap").string(), "--domain", domain});
   const auto run = test::run_process({test::bin("twinslam"), "run", (base() / "tiny").string(), "--mode", "vio-twin",
                                       "--features", "--no-progress", "--mcap", "--out", (base() / "run").string(),
-                                      "--domain", domain},
+                                      "--domain", domain, "--extra-readers", "1"},
                                      {}, std::chrono::seconds(420));
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   record.signal(SIGINT);

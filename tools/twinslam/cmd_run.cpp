@@ -230,8 +230,9 @@ int run_pipeline(const RunOptions& o) {
   }
   // Readers ingest must see before its first sample: every subscriber of each stream plus this recorder.
   // Camera frames (images, or feature frames with --features) go to tracking or to the estimator.
-  // The bridge subscribes to every stream: one more reader of each.
-  const int viewer = o.bridge_port >= 0 ? 1 : 0;
+  // The bridge subscribes to every stream: one more reader of each; so does each --extra-readers recorder (without the
+  // wait, a `twinslam record` that discovers ingest late misses the first samples).
+  const int viewer = (o.bridge_port >= 0 ? 1 : 0) + o.extra_readers;
   const int imu_readers = (o.features ? 2 : 3) + viewer;
   // GNSS: this recorder, the estimator (global inputs, sensor_worker.hpp), and tiles in twin modes.
   const int gnss_readers = 2 + (uses_twin(o.mode) ? 1 : 0) + viewer;
@@ -369,6 +370,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--mcap", o->mcap, "Record every topic to RUN/run.mcap (CDR messages, OMG IDL schemas)");
   cmd->add_option("--bridge", o->bridge_port, "Serve the run live to Foxglove on this port (twinslam-bridge)")
       ->check(CLI::Range(0, 65535));
+  cmd->add_option("--extra-readers", o->extra_readers,
+                  "Readers of every stream started outside the run (twinslam record, twinslam-bridge) to wait for")
+      ->check(CLI::Range(0, 16));
   cmd->callback([o, &exit_code] {
     o->progress = !o->no_progress;
     exit_code = run_pipeline(*o);

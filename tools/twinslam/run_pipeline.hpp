@@ -12,6 +12,7 @@ struct RunOptions {
   bool realtime = false, max = false, features = false, quiet = false;
   bool mcap = false;  // --mcap: every topic recorded to RUN/run.mcap (mcap_recorder.hpp)
   int bridge_port = -1;  // --bridge PORT: twinslam-bridge serves the run live to Foxglove (-1: no bridge)
+  int extra_readers = 0;  // --extra-readers N: readers started outside the run (twinslam record, a bridge) ingest awaits
   bool progress = true, no_progress = false;  // a bar (poses / camera frames) with ETA on stderr; --no-progress
   std::string progress_label = "run";         // the bar's label (bench: the mode)
   int domain = -1;
