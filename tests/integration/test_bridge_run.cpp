@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -67,7 +68,22 @@ TEST(FoxgloveBridge, AClientSubscribedToEveryChannelDecodesTheRunLive) {
   const nlohmann::json got = last_json_line(client.output());
   ASSERT_FALSE(got.is_null()) << client.output();
   EXPECT_EQ(got["server"], "twinslam-bridge");
-  EXPECT_EQ(got["channels"], 11);  // every topic of the table
+  // Every topic of the table, and the well-known channels of the run's one vehicle and of the twin (bridge_client.mjs
+  // validated each of their messages against Foxglove's own JSON Schemas).
+  const std::map<std::string, std::string> well_known{
+      {"/uav0/estimate/pose", "foxglove.PoseInFrame"},     {"/uav0/estimate/path", "foxglove.PosesInFrame"},
+      {"/uav0/landmarks", "foxglove.PointCloud"},          {"/uav0/landmarks/registered", "foxglove.PointCloud"},
+      {"/uav0/registration", "twinslam.RegistrationHealth"}, {"/twin/tiles", "foxglove.SceneUpdate"},
+      {"/uav0/gnss", "foxglove.LocationFix"}};
+  EXPECT_EQ(got["channels"], 11 + well_known.size()) << got["schemas"].dump();
+  for (const auto& [topic, schema] : well_known) {
+    EXPECT_EQ(got["schemas"].value(topic, ""), schema) << topic;
+    EXPECT_GT(got["counts"].value(topic, 0), 0) << topic << " in " << got.dump();
+  }
+  // What Foxglove's 3D panel draws: buildings (a tile's triangles) and a path that grew.
+  const auto& tile = got["samples"]["/twin/tiles"]["entities"][0];
+  EXPECT_GT(tile["triangles"][0]["indices"].value("length", 0), 0) << tile.dump();
+  EXPECT_GT(got["counts"].value("/uav0/estimate/path", 0), 10);
   EXPECT_NE(std::find(got["vehicles"].begin(), got["vehicles"].end(), "uav0"), got["vehicles"].end()) << got.dump();
   for (const char* topic : {"twinslam/v1/imu", "twinslam/v1/features", "twinslam/v2/odometry", "twinslam/v2/local_map",
                             "twinslam/v3/registration", "twinslam/v1/heartbeat"}) {

@@ -1,8 +1,13 @@
 // node tests/node/bridge_client.mjs URL SECONDS — a Foxglove WebSocket client (@foxglove/ws-protocol over `ws`, as
 // Foxglove connects) against twinslam-bridge: retries until the bridge listens, subscribes to every advertised
-// channel and decodes every message with the schema its channel advertised (@foxglove/omgidl-*). Ends when the bridge
-// closes the connection (the run ended) or after SECONDS; prints one JSON object {server, channels, counts,
-// vehicles}; exits 1 with a one-line error if a message does not decode or nothing was advertised.
+// channel (also those advertised later) and decodes every message with the schema its channel advertised: CDR with
+// the OMG IDL (@foxglove/omgidl-*), JSON of Foxglove's well-known schemas validated against Foxglove's own JSON
+// Schemas (@foxglove/schemas, with ajv), other JSON against the schema advertised. Ends when the bridge closes the
+// connection (the run ended) or after SECONDS; prints one JSON object {server, channels, counts, vehicles, schemas:
+// {topic: schemaName}, samples: {topic: first message, JSON channels}}; exits 1 with a one-line error if a message
+// does not decode or validate, or nothing was advertised.
+import Ajv from "ajv";
+import foxgloveSchemas from "@foxglove/schemas/jsonschema.js";
 import wsProtocol from "@foxglove/ws-protocol";
 import { parseIDL } from "@foxglove/omgidl-parser";
 import { MessageReader } from "@foxglove/omgidl-serialization";
@@ -19,7 +24,34 @@ const [url, secondsText] = process.argv.slice(2);
 if (!url || !secondsText) fail("usage: node bridge_client.mjs URL SECONDS");
 const deadline = Date.now() + Number(secondsText) * 1000;
 
-const result = { server: null, channels: 0, counts: {}, vehicles: [] };
+const result = { server: null, channels: 0, counts: {}, vehicles: [], schemas: {}, samples: {} };
+const ajv = new Ajv({ strict: false, allErrors: false });
+
+// A JSON channel's validator: Foxglove's own schema for a foxglove.* name, else the one the channel advertised.
+function jsonValidator(c) {
+  let schema;
+  if (c.schemaName.startsWith("foxglove.")) {
+    schema = foxgloveSchemas[c.schemaName.slice("foxglove.".length)];
+    if (!schema) fail(`${c.topic}: ${c.schemaName} is not one of Foxglove's schemas`);
+  } else {
+    try {
+      schema = JSON.parse(c.schema);
+    } catch (e) {
+      fail(`${c.topic}: advertised schema is not JSON: ${e.message}`);
+    }
+  }
+  const validate = ajv.compile(schema);
+  return (bytes) => {
+    let message;
+    try {
+      message = JSON.parse(new TextDecoder().decode(bytes));
+    } catch (e) {
+      fail(`${c.topic}: a message is not JSON: ${e.message}`);
+    }
+    if (!validate(message)) fail(`${c.topic}: not a valid ${c.schemaName}: ${ajv.errorsText(validate.errors)}`);
+    return message;
+  };
+}
 const vehicles = new Set();
 
 // The client's handlers are attached before the socket opens: the bridge sends serverInfo and advertise at once.
@@ -28,9 +60,17 @@ function attach(client) {
   client.on("serverInfo", (info) => { result.server = info.name; });
   client.on("advertise", (channels) => {
     for (const c of channels) {
-      if (c.encoding !== "cdr" || c.schemaEncoding !== "omgidl") fail(`${c.topic}: ${c.encoding} / ${c.schemaEncoding}`);
-      const reader = new MessageReader(c.schemaName, parseIDL(c.schema));
-      bySubscription.set(client.subscribe(c.id), { topic: c.topic, type: c.schemaName, reader });
+      let decode;
+      if (c.encoding === "cdr" && c.schemaEncoding === "omgidl") {
+        const reader = new MessageReader(c.schemaName, parseIDL(c.schema));
+        decode = (bytes) => reader.readMessage(bytes);
+      } else if (c.encoding === "json" && c.schemaEncoding === "jsonschema") {
+        decode = jsonValidator(c);
+      } else {
+        fail(`${c.topic}: ${c.encoding} / ${c.schemaEncoding}`);
+      }
+      bySubscription.set(client.subscribe(c.id), { topic: c.topic, type: c.schemaName, decode, json: c.encoding === "json" });
+      result.schemas[c.topic] = c.schemaName;
       result.channels++;
     }
   });
@@ -38,14 +78,24 @@ function attach(client) {
     const s = bySubscription.get(subscriptionId) ?? fail(`message for unknown subscription ${subscriptionId}`);
     let decoded;
     try {
-      decoded = s.reader.readMessage(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+      decoded = s.decode(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
     } catch (e) {
       fail(`${s.topic}: a message does not decode as ${s.type}: ${e.message}`);
     }
     if (typeof decoded.vehicle_id === "string" && decoded.vehicle_id !== "") vehicles.add(decoded.vehicle_id);
     result.counts[s.topic] = (result.counts[s.topic] ?? 0) + 1;
+    if (s.json && !(s.topic in result.samples)) result.samples[s.topic] = summary(decoded);
   });
   client.on("status", (s) => { if (s.level >= 2) fail(`server status: ${s.message}`); });
+}
+
+// A JSON message small enough to print: long arrays and the point data shortened to their sizes.
+function summary(message) {
+  return JSON.parse(JSON.stringify(message, (key, value) => {
+    if (Array.isArray(value) && value.length > 8) return { length: value.length };
+    if (key === "data" && typeof value === "string") return { base64_chars: value.length };
+    return value;
+  }));
 }
 
 function connect() {

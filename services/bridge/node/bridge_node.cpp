@@ -1,5 +1,7 @@
 #include "bridge_node.hpp"
 
+#include <type_traits>
+
 #include <twinslam/IdlText.h>
 
 #include "twinslam/core/wall_clock.hpp"
@@ -19,23 +21,52 @@ std::vector<Channel> dds_channels() {
 
 BridgeNode::BridgeNode(dds::Node& node, dds::Counters& counters, const BridgeConfig& config)
     : node_(node),
+      counters_(counters),
       server_(config.address, static_cast<unsigned short>(config.port), dds_channels(), "twinslam-bridge",
-              static_cast<std::size_t>(config.max_queued), counters) {
+              static_cast<std::size_t>(config.max_queued), counters),
+      next_id_(static_cast<std::uint32_t>(dds::topics::kAll.size())) {
   std::uint32_t id = 0;
   for (const dds::TopicSpec& spec : dds::topics::kAll) {
     const std::uint32_t channel = ++id;
     const bool sensor = spec.family == dds::QosFamily::Sensor;
     const std::string_view profile = sensor ? dds::kMonitorReaderProfile : dds::reader_profile(spec.family);
     dds::with_message_type(spec, [&]<class T>() {
-      node.subscribe<T>(spec, [this, channel, &counters](const T& m) {
-        counters.add("messages_in");
+      node.subscribe<T>(spec, [this, channel](const T& m) {
+        counters_.add("messages_in");
+        const std::uint64_t now = unix_time_ns();
+        // Derived forms first: tiles are kept for late viewers and LocalMaps for the registered cloud even when
+        // nobody watches yet.
+        auto derived = derived_.on(m);
+        if constexpr (std::is_same_v<T, msg::MapTile>) {
+          if (derived.empty()) counters_.add("tiles_undecodable");  // its mesh does not decode
+        }
+        publish_derived(std::move(derived), now);
         if (server_.clients() == 0) return;  // nobody watches: no serialization
-        server_.publish(channel, unix_time_ns(), std::make_shared<const std::vector<std::uint8_t>>(dds::to_cdr(m)));
+        server_.publish(channel, now, std::make_shared<const std::vector<std::uint8_t>>(dds::to_cdr(m)));
       }, profile);
     });
   }
 }
 
 BridgeNode::~BridgeNode() { node_.close_readers(); }
+
+void BridgeNode::publish_derived(std::vector<foxglove::DerivedMessage> derived, std::uint64_t time_ns) {
+  for (foxglove::DerivedMessage& d : derived) {
+    std::uint32_t channel = 0;
+    {
+      std::lock_guard lock(channels_mutex_);
+      auto [it, added] = derived_ids_.try_emplace(d.topic, next_id_ + 1);
+      if (added) {
+        ++next_id_;
+        server_.advertise({{it->second, d.topic, "json", std::string(d.schema->name), "jsonschema",
+                            std::string(d.schema->jsonschema)}});
+      }
+      channel = it->second;
+    }
+    if (d.latch_key.empty() && server_.clients() == 0) continue;
+    server_.publish(channel, time_ns, std::make_shared<const std::vector<std::uint8_t>>(d.json.begin(), d.json.end()),
+                    d.latch_key);
+  }
+}
 
 }  // namespace twinslam::bridge

@@ -1,15 +1,21 @@
 #pragma once
 // The bridge's DDS side: every topic of the table is subscribed and each message goes to the WebSocket server as the
 // CDR bytes DDS sent (channel = topic, schema = the project's IDL, as in MCAP recordings), so Foxglove decodes every
-// field live. Readers: the table's own profiles for results, tiles and control (a late bridge still gets the latched
-// tiles), best effort for the high-rate sensor streams (a viewer must not hold back a lockstep replay). Counters:
-// messages_in, and the server's clients_accepted, frames_sent, frames_dropped.
+// field live; and the messages Foxglove's panels draw are also sent in its well-known schemas (JSON; per-vehicle
+// channels advertised as their vehicle appears, twin tiles latched for late viewers: common/foxglove). Readers: the
+// table's own profiles for results, tiles and control (a late bridge still gets the latched tiles), best effort for
+// the high-rate sensor streams (a viewer must not hold back a lockstep replay). Counters: messages_in,
+// tiles_undecodable, and the server's clients_accepted, frames_sent, frames_dropped.
+#include <map>
 #include <memory>
+#include <mutex>
+#include <string>
 #include <vector>
 
 #include "twinslam/bridge/bridge_config.hpp"
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
+#include "twinslam/foxglove/derived_channels.hpp"
 #include "ws_server.hpp"
 
 namespace twinslam::bridge {
@@ -26,8 +32,16 @@ class BridgeNode {
   unsigned short port() const { return server_.port(); }
 
  private:
+  // Sends the well-known forms of one message, advertising channels the first time their topic appears.
+  void publish_derived(std::vector<foxglove::DerivedMessage> derived, std::uint64_t time_ns);
+
   dds::Node& node_;
+  dds::Counters& counters_;
   WsServer server_;
+  foxglove::DerivedChannels derived_;
+  std::mutex channels_mutex_;
+  std::map<std::string, std::uint32_t> derived_ids_;  // Foxglove topic -> channel id
+  std::uint32_t next_id_ = 0;
 };
 
 }  // namespace twinslam::bridge

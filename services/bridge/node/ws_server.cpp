@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <deque>
+#include <map>
 #include <mutex>
 #include <set>
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange without including it
@@ -22,8 +23,14 @@ using tcp = asio::ip::tcp;
 
 namespace {
 
-struct Shared {
+struct Latched {
+  std::uint64_t time_ns = 0;
+  std::shared_ptr<const std::vector<std::uint8_t>> payload;
+};
+
+struct Shared {  // written on the I/O thread only, but clients (atomic)
   std::vector<Channel> channels;
+  std::map<std::uint32_t, std::map<std::string, Latched>> latched;  // channel -> latch key -> last message
   std::string name, session_id;
   std::size_t max_queued = 0;
   dds::Counters* counters = nullptr;
@@ -46,6 +53,16 @@ class Session : public std::enable_shared_from_this<Session> {
     for (const std::uint32_t sub : subs_.subscriptions_of(channel)) {
       queue(std::make_shared<std::vector<std::uint8_t>>(message_data(sub, time_ns, payload.data(), payload.size())));
     }
+  }
+
+  // Channels added after this client was accepted: advertised to it now (an unaccepted client gets the whole list
+  // when accepted).
+  void advertise(const std::vector<Channel>& added) {
+    if (!open_) return;
+    std::vector<std::uint32_t> ids;
+    for (const Channel& c : added) ids.push_back(c.id);
+    subs_.add_channels(ids);
+    queue_text(advertise_json(added));
   }
 
   bool closed() const { return closed_; }
@@ -84,6 +101,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void on_accept(beast::error_code ec) {
     if (ec) return fail("accept", ec);
     open_ = true;
+    subs_ = ClientSubscriptions(channel_ids(shared_.channels));  // those advertised since the session began too
     ++shared_.clients;
     shared_.counters->add("clients_accepted");
     queue_text(server_info_json(shared_.name, shared_.session_id));
@@ -98,10 +116,24 @@ class Session : public std::enable_shared_from_this<Session> {
   void on_read(beast::error_code ec) {
     if (ec) return fail("read", ec);
     if (ws_.got_text()) {
+      const auto before = subs_.subscriptions();
       for (std::string& status : subs_.apply(beast::buffers_to_string(in_.data()))) queue_text(std::move(status));
+      for (const auto& [sub, channel] : subs_.subscriptions()) {
+        if (before.count(sub) == 0) send_latched(sub, channel);
+      }
     }
     in_.consume(in_.size());
     read();
+  }
+
+  // A new subscription first gets the kept (latched) messages of its channel.
+  void send_latched(std::uint32_t sub, std::uint32_t channel) {
+    const auto it = shared_.latched.find(channel);
+    if (it == shared_.latched.end()) return;
+    for (const auto& [key, m] : it->second) {
+      queue(std::make_shared<std::vector<std::uint8_t>>(
+          message_data(sub, m.time_ns, m.payload->data(), m.payload->size())));
+    }
   }
 
   void queue_text(std::string text) {
@@ -209,11 +241,21 @@ WsServer::~WsServer() {
 unsigned short WsServer::port() const { return impl_->acceptor.local_endpoint().port(); }
 
 void WsServer::publish(std::uint32_t channel_id, std::uint64_t receive_time_ns,
-                       std::shared_ptr<const std::vector<std::uint8_t>> payload) {
-  if (impl_->shared.clients.load() == 0) return;  // nobody listens: not even a post
-  asio::post(impl_->io, [m = impl_.get(), channel_id, receive_time_ns, payload = std::move(payload)] {
+                       std::shared_ptr<const std::vector<std::uint8_t>> payload, const std::string& latch_key) {
+  if (latch_key.empty() && impl_->shared.clients.load() == 0) return;  // nobody listens: not even a post
+  asio::post(impl_->io, [m = impl_.get(), channel_id, receive_time_ns, payload = std::move(payload), latch_key] {
+    if (!latch_key.empty()) m->shared.latched[channel_id][latch_key] = {receive_time_ns, payload};
     for (auto& w : m->sessions) {
       if (auto s = w.lock()) s->publish(channel_id, receive_time_ns, *payload);
+    }
+  });
+}
+
+void WsServer::advertise(std::vector<Channel> channels) {
+  asio::post(impl_->io, [m = impl_.get(), channels = std::move(channels)] {
+    m->shared.channels.insert(m->shared.channels.end(), channels.begin(), channels.end());
+    for (auto& w : m->sessions) {
+      if (auto s = w.lock()) s->advertise(channels);
     }
   });
 }

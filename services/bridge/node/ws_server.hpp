@@ -1,7 +1,8 @@
 #pragma once
 // The bridge's WebSocket server (Boost.Beast, one I/O thread): accepts clients that ask for the Foxglove subprotocol,
 // sends each serverInfo and the channel list, applies their Subscribe / Unsubscribe, and fans published messages out
-// as Message Data frames to the subscribed ones. publish() never blocks the caller (a DDS listener thread): frames
+// as Message Data frames to the subscribed ones. Channels can be added while clients are connected (advertised to
+// them at once): the bridge's per-vehicle channels appear with their vehicle. publish() never blocks the caller (a DDS listener thread): frames
 // are queued per client and, past `max_queued` frames, the oldest are dropped and counted — a slow viewer must
 // never slow the pipeline.
 #include <atomic>
@@ -28,9 +29,13 @@ class WsServer {
   WsServer& operator=(const WsServer&) = delete;
 
   unsigned short port() const;
-  // Sends `payload` on `channel_id` to every client subscribed to it. Thread-safe, non-blocking.
+  // Sends `payload` on `channel_id` to every client subscribed to it. Thread-safe, non-blocking. A non-empty
+  // `latch_key` also keeps the payload as the last of that key on the channel: a later subscriber gets every kept
+  // one first (the twin's tiles, which arrive once).
   void publish(std::uint32_t channel_id, std::uint64_t receive_time_ns,
-               std::shared_ptr<const std::vector<std::uint8_t>> payload);
+               std::shared_ptr<const std::vector<std::uint8_t>> payload, const std::string& latch_key = {});
+  // Adds channels (ids not used yet) and advertises them to every connected client. Thread-safe, non-blocking.
+  void advertise(std::vector<Channel> channels);
   std::uint64_t clients() const;  // connected now
 
  private:

@@ -38,6 +38,12 @@ class ClientSubscriptions {
 
   // Applies a text message from the client; returns the status messages to send back (none when all went well).
   std::vector<std::string> apply(const std::string& text);
+  // Channels advertised after this client connected become subscribable.
+  void add_channels(const std::vector<std::uint32_t>& channel_ids) {
+    channels_.insert(channel_ids.begin(), channel_ids.end());
+  }
+  // Subscription id -> channel id.
+  const std::map<std::uint32_t, std::uint32_t>& subscriptions() const { return by_id_; }
   // The client's subscription ids on `channel_id` (at most one per the spec, but a list costs nothing).
   std::vector<std::uint32_t> subscriptions_of(std::uint32_t channel_id) const;
   std::size_t size() const { return by_id_.size(); }
