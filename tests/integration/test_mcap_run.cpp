@@ -4,6 +4,7 @@
 // (@foxglove/omgidl-*), in tests/node/run_mcap.mjs: every channel, message counts equal to the run's own counts.
 #include <csignal>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -68,7 +69,17 @@ TEST(McapRecording, ATinyRunAndARecordOfItReadBackWithTheOfficialReaders) {
     const bool is_record = file.filename() == "record.mcap";
     const nlohmann::json got = read_back(base() / "run", file, is_record);
     ASSERT_FALSE(got.is_null());
-    EXPECT_EQ(got["channels"], 11);  // every topic of the table, used or not
+    // Every topic of the table, used or not, and the well-known JSON channels the bridge serves (run_mcap.mjs
+    // validated their messages against Foxglove's own schemas).
+    const std::map<std::string, std::string> well_known{
+        {"/uav0/estimate/pose", "foxglove.PoseInFrame"}, {"/uav0/estimate/path", "foxglove.PosesInFrame"},
+        {"/uav0/landmarks", "foxglove.PointCloud"},      {"/uav0/registration", "twinslam.RegistrationHealth"},
+        {"/twin/tiles", "foxglove.SceneUpdate"},         {"/uav0/gnss", "foxglove.LocationFix"}};
+    EXPECT_GE(got["channels"].get<std::size_t>(), 11 + well_known.size()) << got["schemas"].dump();
+    for (const auto& [topic, schema] : well_known) {
+      EXPECT_EQ(got["schemas"].value(topic, ""), schema) << topic;
+      EXPECT_GT(got["counts"].value(topic, 0), 0) << topic;
+    }
     EXPECT_EQ(got["vehicles"], nlohmann::json::array({"uav0"}));
     EXPECT_GT(got["chunks"].get<int>(), 1);
     // The run's streams, each with messages: what Foxglove would show of a vio-twin run.

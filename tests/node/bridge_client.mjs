@@ -6,12 +6,11 @@
 // connection (the run ended) or after SECONDS; prints one JSON object {server, channels, counts, vehicles, schemas:
 // {topic: schemaName}, samples: {topic: first message, JSON channels}}; exits 1 with a one-line error if a message
 // does not decode or validate, or nothing was advertised.
-import Ajv from "ajv";
-import foxgloveSchemas from "@foxglove/schemas/jsonschema.js";
 import wsProtocol from "@foxglove/ws-protocol";
 import { parseIDL } from "@foxglove/omgidl-parser";
 import { MessageReader } from "@foxglove/omgidl-serialization";
 import { WebSocket } from "ws";
+import { jsonDecoder, summary } from "./foxglove_json.mjs";
 
 const { FoxgloveClient } = wsProtocol;
 
@@ -25,33 +24,6 @@ if (!url || !secondsText) fail("usage: node bridge_client.mjs URL SECONDS");
 const deadline = Date.now() + Number(secondsText) * 1000;
 
 const result = { server: null, channels: 0, counts: {}, vehicles: [], schemas: {}, samples: {} };
-const ajv = new Ajv({ strict: false, allErrors: false });
-
-// A JSON channel's validator: Foxglove's own schema for a foxglove.* name, else the one the channel advertised.
-function jsonValidator(c) {
-  let schema;
-  if (c.schemaName.startsWith("foxglove.")) {
-    schema = foxgloveSchemas[c.schemaName.slice("foxglove.".length)];
-    if (!schema) fail(`${c.topic}: ${c.schemaName} is not one of Foxglove's schemas`);
-  } else {
-    try {
-      schema = JSON.parse(c.schema);
-    } catch (e) {
-      fail(`${c.topic}: advertised schema is not JSON: ${e.message}`);
-    }
-  }
-  const validate = ajv.compile(schema);
-  return (bytes) => {
-    let message;
-    try {
-      message = JSON.parse(new TextDecoder().decode(bytes));
-    } catch (e) {
-      fail(`${c.topic}: a message is not JSON: ${e.message}`);
-    }
-    if (!validate(message)) fail(`${c.topic}: not a valid ${c.schemaName}: ${ajv.errorsText(validate.errors)}`);
-    return message;
-  };
-}
 const vehicles = new Set();
 
 // The client's handlers are attached before the socket opens: the bridge sends serverInfo and advertise at once.
@@ -65,7 +37,7 @@ function attach(client) {
         const reader = new MessageReader(c.schemaName, parseIDL(c.schema));
         decode = (bytes) => reader.readMessage(bytes);
       } else if (c.encoding === "json" && c.schemaEncoding === "jsonschema") {
-        decode = jsonValidator(c);
+        decode = jsonDecoder(c.topic, c.schemaName, c.schema, fail);
       } else {
         fail(`${c.topic}: ${c.encoding} / ${c.schemaEncoding}`);
       }
@@ -87,15 +59,6 @@ function attach(client) {
     if (s.json && !(s.topic in result.samples)) result.samples[s.topic] = summary(decoded);
   });
   client.on("status", (s) => { if (s.level >= 2) fail(`server status: ${s.message}`); });
-}
-
-// A JSON message small enough to print: long arrays and the point data shortened to their sizes.
-function summary(message) {
-  return JSON.parse(JSON.stringify(message, (key, value) => {
-    if (Array.isArray(value) && value.length > 8) return { length: value.length };
-    if (key === "data" && typeof value === "string") return { base64_chars: value.length };
-    return value;
-  }));
 }
 
 function connect() {

@@ -1,8 +1,9 @@
 // node tests/node/run_mcap.mjs RUN [FILE] — checks RUN/run.mcap (written by `twinslam run --mcap`; or FILE, e.g. a
 // `twinslam record` of the same run) with the official MCAP
 // reader (@mcap/core, indexed and streamed, CRCs validated) and decodes every message with the schema the file
-// advertises (@foxglove/omgidl-parser + omgidl-serialization, as Foxglove does): every channel present, message
-// counts equal to the run's (run.json `messages`, which the run's reliable monitor counted), a schema for each.
+// advertises (CDR: @foxglove/omgidl-parser + omgidl-serialization, as Foxglove does; JSON of Foxglove's well-known
+// schemas: validated against @foxglove/schemas, foxglove_json.mjs): every channel present, message counts equal to
+// the run's (run.json `messages`, which the run's reliable monitor counted), a schema for each.
 // Prints one JSON object; exits 1 with a one-line error on the first problem.
 import { readFileSync } from "node:fs";
 import { join } from "node:path";
@@ -10,6 +11,7 @@ import { McapIndexedReader, McapStreamReader } from "@mcap/core";
 import { fileReadable } from "./file_readable.mjs";
 import { parseIDL } from "@foxglove/omgidl-parser";
 import { MessageReader } from "@foxglove/omgidl-serialization";
+import { jsonDecoder } from "./foxglove_json.mjs";
 
 function fail(message) {
   console.error(`run_mcap: ${message}`);
@@ -28,13 +30,21 @@ const reader = await McapIndexedReader.Initialize({ readable: fileReadable(file)
 if (reader.chunkIndexes.length === 0) fail(`${file}: no chunk index`);
 if (!reader.statistics) fail(`${file}: no statistics record`);
 const decoders = new Map();
+const schemas = {};
 for (const [id, channel] of reader.channelsById) {
   const schema = reader.schemasById.get(channel.schemaId) ?? fail(`${file}: channel ${channel.topic} has no schema`);
-  if (schema.encoding !== "omgidl" || channel.messageEncoding !== "cdr") {
+  const text = new TextDecoder().decode(schema.data);
+  let decode;
+  if (schema.encoding === "omgidl" && channel.messageEncoding === "cdr") {
+    const reader = new MessageReader(schema.name, parseIDL(text));
+    decode = (bytes) => reader.readMessage(bytes);
+  } else if (schema.encoding === "jsonschema" && channel.messageEncoding === "json") {
+    decode = jsonDecoder(channel.topic, schema.name, text, fail);
+  } else {
     fail(`${file}: ${channel.topic}: schema ${schema.encoding} / messages ${channel.messageEncoding}`);
   }
-  const definitions = parseIDL(new TextDecoder().decode(schema.data));
-  decoders.set(id, { topic: channel.topic, type: schema.name, reader: new MessageReader(schema.name, definitions) });
+  decoders.set(id, { topic: channel.topic, type: schema.name, decode });
+  schemas[channel.topic] = schema.name;
 }
 
 const counts = {};
@@ -44,7 +54,7 @@ for await (const m of reader.readMessages()) {
   const d = decoders.get(m.channelId) ?? fail(`${file}: message on unknown channel ${m.channelId}`);
   let decoded;
   try {
-    decoded = d.reader.readMessage(m.data);
+    decoded = d.decode(m.data);
   } catch (e) {
     fail(`${file}: ${d.topic} message ${m.sequence} does not decode as ${d.type}: ${e.message}`);
   }
@@ -71,5 +81,5 @@ for (let record; (record = stream.nextRecord()); ) {
 if (!stream.done()) fail(`${file}: the stream reader did not reach the footer`);
 if (streamed !== messages) fail(`${file}: streamed ${streamed} messages, indexed ${messages}`);
 
-console.log(JSON.stringify({ file, channels: decoders.size, messages, counts, vehicles: [...vehicles].sort(),
+console.log(JSON.stringify({ file, channels: decoders.size, messages, counts, schemas, vehicles: [...vehicles].sort(),
                              chunks: reader.chunkIndexes.length }));

@@ -34,6 +34,7 @@ void add_record_command(CLI::App& app, int& exit_code) {
       hooks.cdr = [&recorder](const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) {
         recorder.record(topic, cdr);
       };
+      hooks.well_known = [&recorder](const std::vector<foxglove::DerivedMessage>& d) { recorder.record(d); };
       TopicMonitor monitor(node, /*reliable=*/true, hooks);
       const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<long>(*duration * 1e3));
       while (!shutdown_requested() && (*duration == 0.0 || std::chrono::steady_clock::now() < end)) {

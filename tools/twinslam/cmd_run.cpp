@@ -177,6 +177,7 @@ int run_pipeline(const RunOptions& o) {
     hooks.cdr = [&mcap](const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) {
       mcap->record(topic, cdr);
     };
+    hooks.well_known = [&mcap](const std::vector<foxglove::DerivedMessage>& d) { mcap->record(d); };
   }
   TopicMonitor monitor(recorder, /*reliable=*/true, hooks);
 

@@ -22,15 +22,37 @@ McapRecorder::McapRecorder(const std::string& path) : path_(path), writer_(std::
 
 McapRecorder::~McapRecorder() = default;  // the Writer closes the file if close() was not called
 
-void McapRecorder::record(const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) {
+void McapRecorder::write(Channel& c, const std::uint8_t* data, std::size_t size) {
   const std::uint64_t log_time_ns = unix_time_ns();
+  writer_->write(c.id, c.sequence++, log_time_ns, log_time_ns, data, size);
+  ++c.count;
+}
+
+void McapRecorder::record(const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr) {
   std::lock_guard lock(mutex_);
   if (closed_) return;
   const auto it = channels_.find(topic.name);
   if (it == channels_.end()) return;  // not a topic of the table: nothing to record it as
-  Channel& c = it->second;
-  writer_->write(c.id, c.sequence++, log_time_ns, log_time_ns, cdr.data(), cdr.size());
-  ++c.count;
+  write(it->second, cdr.data(), cdr.size());
+}
+
+void McapRecorder::record(const std::vector<foxglove::DerivedMessage>& well_known) {
+  std::lock_guard lock(mutex_);
+  if (closed_) return;
+  for (const foxglove::DerivedMessage& d : well_known) {
+    auto it = json_channels_.find(d.topic);
+    if (it == json_channels_.end()) {
+      auto schema = json_schemas_.find(d.schema->name);
+      if (schema == json_schemas_.end()) {
+        schema = json_schemas_.emplace(d.schema->name, writer_->add_schema(std::string(d.schema->name), "jsonschema",
+                                                                           std::string(d.schema->jsonschema)))
+                     .first;
+      }
+      it = json_channels_.emplace(d.topic, Channel{}).first;
+      it->second.id = writer_->add_channel(schema->second, d.topic, "json");
+    }
+    write(it->second, reinterpret_cast<const std::uint8_t*>(d.json.data()), d.json.size());
+  }
 }
 
 void McapRecorder::close() {
@@ -44,6 +66,7 @@ std::map<std::string, std::uint64_t> McapRecorder::counts() const {
   std::lock_guard lock(mutex_);
   std::map<std::string, std::uint64_t> out;
   for (const auto& [name, c] : channels_) out[std::string(name)] = c.count;
+  for (const auto& [name, c] : json_channels_) out[name] = c.count;
   return out;
 }
 

@@ -4,7 +4,10 @@
 // type ("omgidl": the project's IDL as one text, schema name twinslam::msg::<Type>), so Foxglove and the official
 // MCAP readers decode every message without this project's code. Log time = when this process received the message
 // (wall clock, ns since the Unix epoch), publish time = the same: DDS does not carry the writer's send time to us.
-// Thread-safe: the monitor's readers call record() from Fast DDS threads.
+// The same messages in Foxglove's well-known schemas (common/foxglove: poses, path, GNSS, landmark clouds, twin tiles,
+// registration health) go to JSON channels (message encoding "json", schema encoding "jsonschema") created as their
+// topic first appears, the channels the bridge serves live. Thread-safe: the monitor's readers call record() from
+// Fast DDS threads.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -14,6 +17,7 @@
 #include <vector>
 
 #include "twinslam/dds/topics.hpp"
+#include "twinslam/foxglove/derived_channels.hpp"
 
 namespace twinslam::mcap {
 class Writer;
@@ -30,9 +34,10 @@ class McapRecorder {
   McapRecorder& operator=(const McapRecorder&) = delete;
 
   void record(const dds::TopicSpec& topic, const std::vector<std::uint8_t>& cdr);
+  void record(const std::vector<foxglove::DerivedMessage>& well_known);
   // Writes the summary and index; later record() calls are ignored. Throws InputError if the disk write fails.
   void close();
-  // Messages recorded per topic name.
+  // Messages recorded per topic name (DDS topics and well-known channels).
   std::map<std::string, std::uint64_t> counts() const;
   const std::string& path() const { return path_; }
 
@@ -46,6 +51,9 @@ class McapRecorder {
   std::unique_ptr<mcap::Writer> writer_;
   mutable std::mutex mutex_;
   std::map<std::string_view, Channel> channels_;  // by topic name (the names are the table's string literals)
+  std::map<std::string, Channel> json_channels_;  // well-known channels by Foxglove topic
+  std::map<std::string_view, std::uint16_t> json_schemas_;  // by schema name (static strings of common/foxglove)
+  void write(Channel& c, const std::uint8_t* data, std::size_t size);
   bool closed_ = false;
 };
 

@@ -41,6 +41,7 @@ TopicMonitor::TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks) :
       const auto* hook = hook_for<T>(hooks_);
       const auto& st = node.subscribe<T>(spec, [this, hook, &spec](const T& m) {
         if (hooks_.cdr) hooks_.cdr(spec, dds::to_cdr(m));
+        if (hooks_.well_known) hooks_.well_known(well_known_.on(m));
         if (hook != nullptr && *hook) (*hook)(m);
       }, profile);
       entries_.push_back({&spec, &st});

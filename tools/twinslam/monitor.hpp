@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "twinslam/dds/node.hpp"
+#include "twinslam/foxglove/derived_channels.hpp"
 
 namespace twinslam::cli {
 
@@ -34,6 +35,9 @@ struct MonitorHooks {
   std::function<void(const msg::LocalMap&)> local_map;
   // Every message of every topic as its CDR bytes (dds/cdr.hpp), e.g. for an MCAP recording; serialized only when set.
   std::function<void(const dds::TopicSpec&, const std::vector<std::uint8_t>&)> cdr;
+  // Every message's forms in Foxglove's well-known schemas (common/foxglove, as the bridge sends them); converted
+  // only when set.
+  std::function<void(const std::vector<foxglove::DerivedMessage>&)> well_known;
 };
 
 class TopicMonitor {
@@ -57,6 +61,7 @@ class TopicMonitor {
   dds::Node& node_;
   std::vector<Entry> entries_;
   MonitorHooks hooks_;
+  foxglove::DerivedChannels well_known_;  // for hooks_.well_known
   mutable std::mutex mutex_;
   std::map<std::string, ServiceInfo> services_;
 };
