@@ -83,6 +83,8 @@ TEST(FoxgloveDerivedChannels, TilesAreLatchedByKeyAndAnUndecodableOneIsCounted) 
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].topic, "/twin/tiles");
   EXPECT_EQ(out[0].latch_key, "t/1_1");
+  tile.tile_key("");  // a tile without a key is latched too (under "")
+  EXPECT_EQ(channels.on(tile).at(0).latch_key, "");
   tile.mesh_draco({1, 2, 3});
   EXPECT_TRUE(channels.on(tile).empty());
   EXPECT_EQ(channels.tiles_undecodable(), 1u);

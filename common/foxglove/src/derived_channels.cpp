@@ -23,7 +23,7 @@ std::string DerivedChannels::prefix(const std::string& vehicle_id) {
 
 std::vector<DerivedMessage> DerivedChannels::on(const msg::Odometry& m) {
   const std::string v = prefix(m.vehicle_id());
-  std::vector<DerivedMessage> out{{v + "/estimate/pose", &pose_in_frame_schema(), pose_json(m), {}}};
+  std::vector<DerivedMessage> out{{v + "/estimate/pose", &pose_in_frame_schema(), pose_json(m), std::nullopt}};
   if (m.status() != msg::ODOM_TRACKING && m.status() != msg::ODOM_ALIGNED) return out;  // no pose to draw yet
   const PoseW T = pose_of(m.T_WB());
   if (!finite(T)) return out;
@@ -36,12 +36,12 @@ std::vector<DerivedMessage> DerivedChannels::on(const msg::Odometry& m) {
     path = std::move(half);
   }
   path.push_back(T);
-  out.push_back({v + "/estimate/path", &poses_in_frame_schema(), path_json(m.stamp_ns(), path), {}});
+  out.push_back({v + "/estimate/path", &poses_in_frame_schema(), path_json(m.stamp_ns(), path), std::nullopt});
   return out;
 }
 
 std::vector<DerivedMessage> DerivedChannels::on(const msg::GnssFix& m) {
-  return {{prefix(m.vehicle_id()) + "/gnss", &location_fix_schema(), location_fix_json(m), {}}};
+  return {{prefix(m.vehicle_id()) + "/gnss", &location_fix_schema(), location_fix_json(m), std::nullopt}};
 }
 
 std::vector<DerivedMessage> DerivedChannels::on(const msg::LocalMap& m) {
@@ -51,17 +51,19 @@ std::vector<DerivedMessage> DerivedChannels::on(const msg::LocalMap& m) {
     maps.push_back(m);
     while (maps.size() > config_.kept_local_maps) maps.pop_front();
   }
-  return {{prefix(m.vehicle_id()) + "/landmarks", &point_cloud_schema(), landmarks_json(m), {}}};
+  return {{prefix(m.vehicle_id()) + "/landmarks", &point_cloud_schema(), landmarks_json(m), std::nullopt}};
 }
 
 std::vector<DerivedMessage> DerivedChannels::on(const msg::Registration& m) {
   const std::string v = prefix(m.vehicle_id());
-  std::vector<DerivedMessage> out{{v + "/registration", &registration_health_schema(), registration_health_json(m), {}}};
+  std::vector<DerivedMessage> out{
+      {v + "/registration", &registration_health_schema(), registration_health_json(m), std::nullopt}};
   if (m.status() != msg::REG_ACCEPTED) return out;
   std::lock_guard lock(mutex_);
   for (const msg::LocalMap& map : vehicles_[m.vehicle_id()].local_maps) {
     if (map.keyframe_stamp_ns() == m.keyframe_stamp_ns()) {
-      out.push_back({v + "/landmarks/registered", &point_cloud_schema(), landmarks_json(map, &m.correction_W()), {}});
+      out.push_back(
+          {v + "/landmarks/registered", &point_cloud_schema(), landmarks_json(map, &m.correction_W()), std::nullopt});
       break;
     }
   }

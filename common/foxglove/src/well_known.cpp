@@ -71,7 +71,9 @@ PoseW pose_of(const msg::Pose& T) {
 }
 
 std::string pose_json(const msg::Odometry& m) {
-  return text(json{{"timestamp", stamp(m.stamp_ns())}, {"frame_id", kWorldFrame}, {"pose", pose_json_of(pose_of(m.T_WB()))}});
+  return text(json{{"timestamp", stamp(m.stamp_ns())},
+                   {"frame_id", kWorldFrame},
+                   {"pose", pose_json_of(pose_of(m.T_WB()))}});
 }
 
 std::string path_json(std::int64_t stamp_ns, const std::vector<PoseW>& path) {

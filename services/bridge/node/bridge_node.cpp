@@ -63,7 +63,7 @@ void BridgeNode::publish_derived(std::vector<foxglove::DerivedMessage> derived, 
       }
       channel = it->second;
     }
-    if (d.latch_key.empty() && server_.clients() == 0) continue;
+    if (!d.latch_key && server_.clients() == 0) continue;
     server_.publish(channel, time_ns, std::make_shared<const std::vector<std::uint8_t>>(d.json.begin(), d.json.end()),
                     d.latch_key);
   }

@@ -241,10 +241,11 @@ WsServer::~WsServer() {
 unsigned short WsServer::port() const { return impl_->acceptor.local_endpoint().port(); }
 
 void WsServer::publish(std::uint32_t channel_id, std::uint64_t receive_time_ns,
-                       std::shared_ptr<const std::vector<std::uint8_t>> payload, const std::string& latch_key) {
-  if (latch_key.empty() && impl_->shared.clients.load() == 0) return;  // nobody listens: not even a post
+                       std::shared_ptr<const std::vector<std::uint8_t>> payload,
+                       const std::optional<std::string>& latch_key) {
+  if (!latch_key && impl_->shared.clients.load() == 0) return;  // nobody listens: not even a post
   asio::post(impl_->io, [m = impl_.get(), channel_id, receive_time_ns, payload = std::move(payload), latch_key] {
-    if (!latch_key.empty()) m->shared.latched[channel_id][latch_key] = {receive_time_ns, payload};
+    if (latch_key) m->shared.latched[channel_id][*latch_key] = {receive_time_ns, payload};
     for (auto& w : m->sessions) {
       if (auto s = w.lock()) s->publish(channel_id, receive_time_ns, *payload);
     }

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -29,11 +30,12 @@ class WsServer {
   WsServer& operator=(const WsServer&) = delete;
 
   unsigned short port() const;
-  // Sends `payload` on `channel_id` to every client subscribed to it. Thread-safe, non-blocking. A non-empty
-  // `latch_key` also keeps the payload as the last of that key on the channel: a later subscriber gets every kept
+  // Sends `payload` on `channel_id` to every client subscribed to it. Thread-safe, non-blocking. A `latch_key`
+  // (any string) also keeps the payload as the last of that key on the channel: a later subscriber gets every kept
   // one first (the twin's tiles, which arrive once).
   void publish(std::uint32_t channel_id, std::uint64_t receive_time_ns,
-               std::shared_ptr<const std::vector<std::uint8_t>> payload, const std::string& latch_key = {});
+               std::shared_ptr<const std::vector<std::uint8_t>> payload,
+               const std::optional<std::string>& latch_key = std::nullopt);
   // Adds channels (ids not used yet) and advertises them to every connected client. Thread-safe, non-blocking.
   void advertise(std::vector<Channel> channels);
   std::uint64_t clients() const;  // connected now

@@ -13,6 +13,7 @@
 #include <deque>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,8 @@ struct DerivedMessage {
   std::string topic;
   const Schema* schema = nullptr;
   std::string json;
-  std::string latch_key;  // non-empty: a late subscriber gets the last message of each key on this topic
+  // Set: a late subscriber gets the last message of each key on this topic (any string, empty included).
+  std::optional<std::string> latch_key;
 };
 
 struct DerivedChannelsConfig {
