@@ -20,10 +20,10 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   shift
   build=${TWINSLAM_SANITIZE_DIR:-$root/build-sanitize}
   # -O1: sanitized code at -O3 builds slowly and reports no more; NDEBUG as in Release (the suite's own checks are
-  # gtest assertions). No benchmarks: they measure nothing under a sanitizer.
+  # gtest assertions). No benchmarks: they measure nothing under a sanitizer; no tests/integration: only `unit` runs.
   TWINSLAM_BUILD_DIR=$build bash "$root/scripts/setup.sh" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DTWINSLAM_SANITIZE=address,undefined \
-    -DTWINSLAM_BUILD_BENCHMARKS=OFF
+    -DTWINSLAM_BUILD_BENCHMARKS=OFF -DTWINSLAM_BUILD_INTEGRATION_TESTS=OFF
   # new_delete_type_mismatch=0: Fast DDS 2.9 itself deletes its readers with a mismatched size
   # (RTPSReader::~RTPSReader via DataReaderImpl::stop, in libfastrtps.so.2.9, not our code); ASan has no per-library
   # suppression for that check.
