@@ -75,6 +75,24 @@ TEST(FoxgloveDerivedChannels, TheRegisteredCloudFollowsOnlyAnAcceptedRegistratio
   EXPECT_EQ(channels.on(r).size(), 1u);
 }
 
+TEST(FoxgloveDerivedChannels, UnwatchedOnlyKeepsStateAndTilesAndAWatcherThenGetsTheWholePath) {
+  DerivedChannels channels;
+  for (int x = 0; x < 3; ++x) EXPECT_TRUE(channels.on(odometry("uav0", 2.0 * x), /*render=*/false).empty());
+  EXPECT_TRUE(channels.on(test::local_map("uav0", 5, transform(0, {0, 0, 0}), {{1, 2, 3}}), false).empty());
+  msg::MapTile tile;
+  tile.tile_key("t/0_0");
+  EXPECT_EQ(channels.on(tile, false).size(), 1u);  // latched: made even when nobody watches
+  const auto watched = channels.on(odometry("uav0", 6.0));
+  ASSERT_EQ(watched.size(), 2u);
+  EXPECT_EQ(json::parse(watched[1].json)["poses"].size(), 4u);  // the poses seen unwatched are in the path
+  msg::Registration r;
+  r.vehicle_id("uav0");
+  r.keyframe_stamp_ns(5);
+  r.status(msg::REG_ACCEPTED);
+  r.correction_W(pose(transform(0, {0, 0, 0})));
+  EXPECT_EQ(channels.on(r).size(), 2u);  // the LocalMap kept unwatched gives the registered cloud
+}
+
 TEST(FoxgloveDerivedChannels, TilesAreLatchedByKeyAndAnUndecodableOneIsCounted) {
   DerivedChannels channels;
   msg::MapTile tile;

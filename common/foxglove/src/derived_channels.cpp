@@ -21,9 +21,10 @@ std::string DerivedChannels::prefix(const std::string& vehicle_id) {
   return "/" + (vehicle_id.empty() ? std::string("unnamed") : vehicle_id);
 }
 
-std::vector<DerivedMessage> DerivedChannels::on(const msg::Odometry& m) {
+std::vector<DerivedMessage> DerivedChannels::on(const msg::Odometry& m, bool render) {
   const std::string v = prefix(m.vehicle_id());
-  std::vector<DerivedMessage> out{{v + "/estimate/pose", &pose_in_frame_schema(), pose_json(m), std::nullopt}};
+  std::vector<DerivedMessage> out;
+  if (render) out.push_back({v + "/estimate/pose", &pose_in_frame_schema(), pose_json(m), std::nullopt});
   if (m.status() != msg::ODOM_TRACKING && m.status() != msg::ODOM_ALIGNED) return out;  // no pose to draw yet
   const PoseW T = pose_of(m.T_WB());
   if (!finite(T)) return out;
@@ -36,25 +37,30 @@ std::vector<DerivedMessage> DerivedChannels::on(const msg::Odometry& m) {
     path = std::move(half);
   }
   path.push_back(T);
-  out.push_back({v + "/estimate/path", &poses_in_frame_schema(), path_json(m.stamp_ns(), path), std::nullopt});
+  if (render) {
+    out.push_back({v + "/estimate/path", &poses_in_frame_schema(), path_json(m.stamp_ns(), path), std::nullopt});
+  }
   return out;
 }
 
-std::vector<DerivedMessage> DerivedChannels::on(const msg::GnssFix& m) {
+std::vector<DerivedMessage> DerivedChannels::on(const msg::GnssFix& m, bool render) {
+  if (!render) return {};
   return {{prefix(m.vehicle_id()) + "/gnss", &location_fix_schema(), location_fix_json(m), std::nullopt}};
 }
 
-std::vector<DerivedMessage> DerivedChannels::on(const msg::LocalMap& m) {
+std::vector<DerivedMessage> DerivedChannels::on(const msg::LocalMap& m, bool render) {
   {
     std::lock_guard lock(mutex_);
     auto& maps = vehicles_[m.vehicle_id()].local_maps;
     maps.push_back(m);
     while (maps.size() > config_.kept_local_maps) maps.pop_front();
   }
+  if (!render) return {};
   return {{prefix(m.vehicle_id()) + "/landmarks", &point_cloud_schema(), landmarks_json(m), std::nullopt}};
 }
 
-std::vector<DerivedMessage> DerivedChannels::on(const msg::Registration& m) {
+std::vector<DerivedMessage> DerivedChannels::on(const msg::Registration& m, bool render) {
+  if (!render) return {};
   const std::string v = prefix(m.vehicle_id());
   std::vector<DerivedMessage> out{
       {v + "/registration", &registration_health_schema(), registration_health_json(m), std::nullopt}};
@@ -70,7 +76,7 @@ std::vector<DerivedMessage> DerivedChannels::on(const msg::Registration& m) {
   return out;
 }
 
-std::vector<DerivedMessage> DerivedChannels::on(const msg::MapTile& m) {
+std::vector<DerivedMessage> DerivedChannels::on(const msg::MapTile& m, bool /*render*/) {  // latched: always
   try {
     return {{"/twin/tiles", &scene_update_schema(), tile_scene_json(m), m.tile_key()}};
   } catch (const std::exception&) {  // InputError from the decoder; anything Draco throws

@@ -34,9 +34,9 @@ BridgeNode::BridgeNode(dds::Node& node, dds::Counters& counters, const BridgeCon
       node.subscribe<T>(spec, [this, channel](const T& m) {
         counters_.add("messages_in");
         const std::uint64_t now = unix_time_ns();
-        // Derived forms first: tiles are kept for late viewers and LocalMaps for the registered cloud even when
-        // nobody watches yet.
-        auto derived = derived_.on(m);
+        // Derived forms first: tiles are kept for late viewers, the path and LocalMaps (for the registered cloud)
+        // even when nobody watches yet; other JSON only for a watcher.
+        auto derived = derived_.on(m, server_.clients() > 0);
         if constexpr (std::is_same_v<T, msg::MapTile>) {
           if (derived.empty()) counters_.add("tiles_undecodable");  // its mesh does not decode
         }
@@ -63,7 +63,6 @@ void BridgeNode::publish_derived(std::vector<foxglove::DerivedMessage> derived, 
       }
       channel = it->second;
     }
-    if (!d.latch_key && server_.clients() == 0) continue;
     server_.publish(channel, time_ns, std::make_shared<const std::vector<std::uint8_t>>(d.json.begin(), d.json.end()),
                     d.latch_key);
   }

@@ -2,9 +2,9 @@
 // The bridge's WebSocket server (Boost.Beast, one I/O thread): accepts clients that ask for the Foxglove subprotocol,
 // sends each serverInfo and the channel list, applies their Subscribe / Unsubscribe, and fans published messages out
 // as Message Data frames to the subscribed ones. Channels can be added while clients are connected (advertised to
-// them at once): the bridge's per-vehicle channels appear with their vehicle. publish() never blocks the caller (a DDS listener thread): frames
-// are queued per client and, past `max_queued` frames, the oldest are dropped and counted — a slow viewer must
-// never slow the pipeline.
+// them at once): the bridge's per-vehicle channels appear with their vehicle. publish() never blocks the caller (a
+// DDS listener thread): frames are queued per client and, past `max_queued` frames, the oldest are dropped and
+// counted — a slow viewer must never slow the pipeline.
 #include <atomic>
 #include <cstdint>
 #include <memory>

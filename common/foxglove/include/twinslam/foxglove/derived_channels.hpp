@@ -39,13 +39,15 @@ class DerivedChannels {
  public:
   explicit DerivedChannels(DerivedChannelsConfig config = {}) : config_(config) {}
 
-  std::vector<DerivedMessage> on(const msg::Odometry& m);
-  std::vector<DerivedMessage> on(const msg::GnssFix& m);
-  std::vector<DerivedMessage> on(const msg::LocalMap& m);
-  std::vector<DerivedMessage> on(const msg::Registration& m);
-  std::vector<DerivedMessage> on(const msg::MapTile& m);
+  // render = false (nobody watches): only the state is kept up to date (the path, the held LocalMaps) and only the
+  // latched messages (tiles) are made; no JSON is built for anything else.
+  std::vector<DerivedMessage> on(const msg::Odometry& m, bool render = true);
+  std::vector<DerivedMessage> on(const msg::GnssFix& m, bool render = true);
+  std::vector<DerivedMessage> on(const msg::LocalMap& m, bool render = true);
+  std::vector<DerivedMessage> on(const msg::Registration& m, bool render = true);
+  std::vector<DerivedMessage> on(const msg::MapTile& m, bool render = true);
   template <class T>
-  std::vector<DerivedMessage> on(const T&) {
+  std::vector<DerivedMessage> on(const T&, bool = true) {
     return {};  // no well-known form (sensor streams, heartbeats: their CDR channels carry them)
   }
 
