@@ -110,4 +110,14 @@ const Schema& registration_health_schema() {
   return schema;
 }
 
+const Schema& service_state_schema() {
+  static const std::string s = text(object(
+      "twinslam.ServiceState",
+      {{"timestamp", time()}, {"service", string()}, {"instance", string()}, {"vehicle_id", string()},
+       {"state", string()}, {"uptime_ms", integer(0)},
+       {"counters", array_of(object("twinslam.Counter", {{"name", string()}, {"value", integer(0)}}))}}));
+  static const Schema schema{"twinslam.ServiceState", s};
+  return schema;
+}
+
 }  // namespace twinslam::foxglove

@@ -178,4 +178,28 @@ std::string registration_health_json(const msg::Registration& m) {
               {"readmitted", m.readmitted()}});
 }
 
+std::string_view service_state_name(msg::ServiceState s) {
+  switch (s) {
+    case msg::SVC_STARTING: return "STARTING";
+    case msg::SVC_READY: return "READY";
+    case msg::SVC_RUNNING: return "RUNNING";
+    case msg::SVC_DONE: return "DONE";
+    case msg::SVC_STOPPING: return "STOPPING";
+    case msg::SVC_FAILED: return "FAILED";
+  }
+  return "UNKNOWN";
+}
+
+std::string service_state_json(const msg::Heartbeat& m) {
+  json counters = json::array();
+  for (const msg::Counter& c : m.counters()) counters.push_back({{"name", c.name()}, {"value", c.value()}});
+  return text(json{{"timestamp", stamp(m.wall_ns())},
+                   {"service", m.service()},
+                   {"instance", m.instance()},
+                   {"vehicle_id", m.vehicle_id()},
+                   {"state", service_state_name(m.state())},
+                   {"uptime_ms", m.uptime_ms()},
+                   {"counters", std::move(counters)}});
+}
+
 }  // namespace twinslam::foxglove

@@ -6,12 +6,16 @@
 //   /V/landmarks            foxglove.PointCloud      every LocalMap, placed by the estimator (T_WL)
 //   /V/landmarks/registered foxglove.PointCloud      the same landmarks after an accepted registration (eq. 3)
 //   /V/registration         twinslam.RegistrationHealth  every Registration
+//   /V/truth/path           foxglove.PosesInFrame    with set_truth(): the ground truth up to the newest estimate's
+//                                                    stamp (replaying a simulation), spaced and thinned as the path
+//   /V/gnss/path            foxglove.PosesInFrame    with set_origin(): the GNSS fixes placed in W (ENU at the origin)
 // and for all vehicles /twin/tiles (foxglove.SceneUpdate, one entity per MapTile, latched by tile key: a viewer that
-// comes late needs every tile). Thread-safe (DDS listeners call it concurrently); never throws: a tile whose mesh
+// comes late needs every tile) and /services (twinslam.ServiceState, every Heartbeat, latched per service instance). Thread-safe (DDS listeners call it concurrently); never throws: a tile whose mesh
 // does not decode gives no message and is counted (tiles_undecodable).
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -19,7 +23,16 @@
 
 #include "twinslam/foxglove/well_known.hpp"
 
+namespace twinslam::twin {
+class EnuFrame;
+}
+
 namespace twinslam::foxglove {
+
+struct StampedPoseW {
+  std::int64_t stamp_ns = 0;  // the estimate's clock (the dataset's sensor time) [ns]
+  PoseW T_WB;
+};
 
 struct DerivedMessage {
   std::string topic;
@@ -37,7 +50,16 @@ struct DerivedChannelsConfig {
 
 class DerivedChannels {
  public:
-  explicit DerivedChannels(DerivedChannelsConfig config = {}) : config_(config) {}
+  explicit DerivedChannels(DerivedChannelsConfig config = {});
+  ~DerivedChannels();
+  DerivedChannels(const DerivedChannels&) = delete;
+  DerivedChannels& operator=(const DerivedChannels&) = delete;
+
+  // A vehicle's ground truth T_WB (stamps increasing), drawn up to each estimate's stamp.
+  void set_truth(const std::string& vehicle_id, std::vector<StampedPoseW> truth);
+  // W's WGS84 origin "LAT,LON,H" ([deg], [deg], ellipsoidal [m]): GNSS fixes are then also drawn in W. Throws
+  // UsageError naming a malformed origin.
+  void set_origin(const std::string& lat_lon_h);
 
   // render = false (nobody watches): only the state is kept up to date (the path, the held LocalMaps) and only the
   // latched messages (tiles) are made; no JSON is built for anything else.
@@ -46,9 +68,10 @@ class DerivedChannels {
   std::vector<DerivedMessage> on(const msg::LocalMap& m, bool render = true);
   std::vector<DerivedMessage> on(const msg::Registration& m, bool render = true);
   std::vector<DerivedMessage> on(const msg::MapTile& m, bool render = true);
+  std::vector<DerivedMessage> on(const msg::Heartbeat& m, bool render = true);
   template <class T>
   std::vector<DerivedMessage> on(const T&, bool = true) {
-    return {};  // no well-known form (sensor streams, heartbeats: their CDR channels carry them)
+    return {};  // no well-known form (sensor streams, control: their CDR channels carry them)
   }
 
   std::uint64_t tiles_undecodable() const;
@@ -57,10 +80,18 @@ class DerivedChannels {
 
  private:
   struct Vehicle {
-    std::vector<PoseW> path;
+    std::vector<PoseW> path, truth_path, gnss_path;
+    std::vector<StampedPoseW> truth;  // set_truth's, drawn up to truth_next
+    std::size_t truth_next = 0;
     std::deque<msg::LocalMap> local_maps;
   };
+  // Appends T if it is path_spacing_m from the path's last pose (halving a full path first); false: not appended.
+  bool append_spaced(std::vector<PoseW>& path, const PoseW& T) const;
+  // Moves the vehicle's truth path up to stamp_ns; true when it grew.
+  bool advance_truth(Vehicle& v, std::int64_t stamp_ns) const;
+
   DerivedChannelsConfig config_;
+  std::unique_ptr<twin::EnuFrame> enu_;
   mutable std::mutex mutex_;
   std::map<std::string, Vehicle> vehicles_;
   std::uint64_t tiles_undecodable_ = 0;

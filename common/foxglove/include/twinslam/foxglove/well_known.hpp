@@ -12,6 +12,7 @@
 #include <twinslam/Map.h>
 #include <twinslam/Registration.h>
 #include <twinslam/Sensors.h>
+#include <twinslam/System.h>
 
 namespace twinslam::foxglove {
 
@@ -28,6 +29,7 @@ const Schema& location_fix_schema();          // foxglove.LocationFix
 const Schema& point_cloud_schema();           // foxglove.PointCloud
 const Schema& scene_update_schema();          // foxglove.SceneUpdate
 const Schema& registration_health_schema();   // twinslam.RegistrationHealth (this project's, for the Plot panel)
+const Schema& service_state_schema();         // twinslam.ServiceState (this project's: a service's heartbeat)
 
 struct PoseW {  // a pose in W: position [m], orientation quaternion (w, x, y, z)
   double p[3];
@@ -51,7 +53,13 @@ std::string tile_scene_json(const msg::MapTile& m);
 // twinslam.RegistrationHealth: status, RMSE, inliers, fitness, information eigenvalues, the correction's size, times.
 std::string registration_health_json(const msg::Registration& m);
 
+// twinslam.ServiceState: a heartbeat — service, instance, vehicle, state, uptime, counters; stamped with the
+// sender's wall clock (display only).
+std::string service_state_json(const msg::Heartbeat& m);
+
 // The IDL status's name without its prefix, e.g. "ACCEPTED", "REJECTED_RMSE".
 std::string_view registration_status_name(msg::RegistrationStatus s);
+// The service state's name without its prefix, e.g. "RUNNING".
+std::string_view service_state_name(msg::ServiceState s);
 
 }  // namespace twinslam::foxglove
