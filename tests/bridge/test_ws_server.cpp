@@ -2,12 +2,17 @@
 // that connects late must still get (latched twin tiles, first, on subscribing) and channels that appear while it
 // is connected (advertised to it at once, then subscribable). The full pipeline is test_bridge_run's.
 #include <chrono>
+#include <unistd.h>
+
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange without including it
 
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -99,6 +104,37 @@ TEST(BridgeWsServer, ALateViewerGetsEveryLatchedTileAndChannelsAdvertisedWhileIt
   server.publish(2, 20, bytes("pose"));
   EXPECT_EQ(client.next(), "sub=8 payload=pose");
   EXPECT_EQ(counters.get("clients_accepted"), 1u);
+}
+
+// A plain HTTP GET on the bridge's port; the status and body of the answer.
+std::pair<unsigned, std::string> http_get(unsigned short port, const std::string& target) {
+  asio::io_context io;
+  beast::tcp_stream stream(io);
+  tcp::resolver resolver(io);
+  stream.expires_after(std::chrono::seconds(10));
+  stream.connect(resolver.resolve("127.0.0.1", std::to_string(port)));
+  beast::http::request<beast::http::empty_body> req{beast::http::verb::get, target, 11};
+  req.set(beast::http::field::host, "127.0.0.1");
+  beast::http::write(stream, req);
+  beast::flat_buffer buffer;
+  beast::http::response<beast::http::string_body> res;
+  beast::http::read(stream, buffer, res);
+  return {res.result_int(), res.body()};
+}
+
+TEST(BridgeWsServer, TheWebViewIsServedOnTheSamePortAsTheProtocol) {
+  const auto root = std::filesystem::temp_directory_path() / ("twinslam_ws_web_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(root);
+  std::ofstream(root / "index.html") << "<title>twinslam</title>";
+  std::ofstream(root / "app.js") << "let x = 1;";
+  dds::Counters counters;
+  WsServer server("127.0.0.1", 0, {}, "test", 100, counters, root);
+  EXPECT_EQ(http_get(server.port(), "/"), std::make_pair(200u, std::string("<title>twinslam</title>")));
+  EXPECT_EQ(http_get(server.port(), "/app.js").second, "let x = 1;");
+  EXPECT_EQ(http_get(server.port(), "/../etc/passwd").first, 400u);
+  Client client(server.port());  // and a Foxglove client on the same port, after the page
+  EXPECT_EQ(json::parse(client.next())["op"], "serverInfo");
+  std::filesystem::remove_all(root);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // The Foxglove bridge during a real tiny run (issue 16 item 1): `twinslam run --bridge PORT` starts twinslam-bridge
 // with the pipeline, and a Foxglove WebSocket client (tests/node/bridge_client.mjs: @foxglove/ws-protocol over `ws`,
 // the way Foxglove connects) subscribes to every advertised channel; every message it receives decodes with the OMG
-// IDL schema its channel advertised (@foxglove/omgidl-*), and the run's streams reach it live.
+// IDL schema its channel advertised (@foxglove/omgidl-*), and the run's streams reach it live — with the dataset's
+// ground truth and its GNSS fixes in W next to the estimate (run passes the bridge --truth and --origin).
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -74,7 +75,8 @@ TEST(FoxgloveBridge, AClientSubscribedToEveryChannelDecodesTheRunLive) {
       {"/uav0/estimate/pose", "foxglove.PoseInFrame"},     {"/uav0/estimate/path", "foxglove.PosesInFrame"},
       {"/uav0/landmarks", "foxglove.PointCloud"},          {"/uav0/landmarks/registered", "foxglove.PointCloud"},
       {"/uav0/registration", "twinslam.RegistrationHealth"}, {"/twin/tiles", "foxglove.SceneUpdate"},
-      {"/uav0/gnss", "foxglove.LocationFix"}};
+      {"/uav0/gnss", "foxglove.LocationFix"},          {"/uav0/gnss/path", "foxglove.PosesInFrame"},
+      {"/uav0/truth/path", "foxglove.PosesInFrame"},    {"/services", "twinslam.ServiceState"}};
   EXPECT_EQ(got["channels"], 11 + well_known.size()) << got["schemas"].dump();
   for (const auto& [topic, schema] : well_known) {
     EXPECT_EQ(got["schemas"].value(topic, ""), schema) << topic;

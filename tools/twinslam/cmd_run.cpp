@@ -112,6 +112,14 @@ int run_pipeline(const RunOptions& o) {
     throw UsageError("mode '" + o.mode + "': its pose graph starts from the GNSS alignment; --initial-pose is not used");
   }
   if (uses_twin(o.mode) || needs_gnss(o.mode)) geo = read_dataset_geo(dataset.root);
+  // The bridge draws GNSS in W in every mode (the estimator gets an origin only in the modes above).
+  std::optional<DatasetGeo> view_geo = geo;
+  if (!view_geo && o.bridge_port >= 0 && !dataset.gnss.empty()) {
+    try {  // a dataset without an origin still runs: its fixes are then only on Foxglove's Map panel
+      view_geo = read_dataset_geo(dataset.root);
+    } catch (const InputError&) {
+    }
+  }
   if (uses_twin(o.mode)) {
     if (dataset.gnss.empty() && o.initial_pose.empty()) {
       throw UsageError("mode '" + o.mode + "': the dataset has no GNSS (mav0/gnss0) for the initial alignment; give "
@@ -198,7 +206,12 @@ int run_pipeline(const RunOptions& o) {
     if (s == "tracking") args.insert(args.end(), {"--camera", camera});
     if (s == "tiles") args.insert(args.end(), {"--twin", twin_store.string()});
     if (s == "registration") args.insert(args.end(), {"--weights", o.weights});
-    if (s == "bridge") args = {"--vehicle", "", replay, "--port", std::to_string(o.bridge_port)};  // every vehicle
+    if (s == "bridge") {  // every vehicle; the view also draws the dataset's truth and GNSS in W
+      args = {"--vehicle", "", replay, "--port", std::to_string(o.bridge_port)};
+      if (view_geo) args.insert(args.end(), {"--origin", origin_text(view_geo->origin)});
+      const auto truth = dataset.root / "groundtruth.tum";
+      if (std::filesystem::is_regular_file(truth)) args.insert(args.end(), {"--truth", o.vehicle + "=" + truth.string()});
+    }
     if (s == "estimator") {
       args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
       if (geo) args.insert(args.end(), {"--origin", origin_text(geo->origin)});

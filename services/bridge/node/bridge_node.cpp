@@ -4,9 +4,11 @@
 
 #include <twinslam/IdlText.h>
 
+#include "twinslam/core/error.hpp"
 #include "twinslam/core/wall_clock.hpp"
 #include "twinslam/dds/cdr.hpp"
 #include "twinslam/dds/dispatch.hpp"
+#include "twinslam/trajectory/io.hpp"
 
 namespace twinslam::bridge {
 
@@ -19,12 +21,30 @@ std::vector<Channel> dds_channels() {
   return out;
 }
 
-BridgeNode::BridgeNode(dds::Node& node, dds::Counters& counters, const BridgeConfig& config)
+VehicleTruth load_vehicle_truth(const std::string& spec) {
+  const std::size_t eq = spec.find('=');
+  if (eq == std::string::npos || eq + 1 == spec.size()) {
+    throw UsageError("--truth '" + spec + "': expected VEHICLE=FILE (a TUM file of T_WB)");
+  }
+  VehicleTruth out{spec.substr(0, eq), {}};
+  for (const StampedPose& p : read_tum(spec.substr(eq + 1)).poses) {
+    const Eigen::Quaterniond q = p.q_XB();
+    const Eigen::Vector3d t = p.p_X();
+    out.T_WB.push_back({p.stamp_ns, {{t.x(), t.y(), t.z()}, {q.w(), q.x(), q.y(), q.z()}}});
+  }
+  return out;
+}
+
+BridgeNode::BridgeNode(dds::Node& node, dds::Counters& counters, const BridgeConfig& config,
+                       std::vector<VehicleTruth> truth)
     : node_(node),
       counters_(counters),
       server_(config.address, static_cast<unsigned short>(config.port), dds_channels(), "twinslam-bridge",
-              static_cast<std::size_t>(config.max_queued), counters),
+              static_cast<std::size_t>(config.max_queued), counters,
+              config.web_root.empty() ? std::string(TWINSLAM_WEB_DIR) : config.web_root),
       next_id_(static_cast<std::uint32_t>(dds::topics::kAll.size())) {
+  if (!config.origin.empty()) derived_.set_origin(config.origin);
+  for (VehicleTruth& t : truth) derived_.set_truth(t.vehicle_id, std::move(t.T_WB));
   std::uint32_t id = 0;
   for (const dds::TopicSpec& spec : dds::topics::kAll) {
     const std::uint32_t channel = ++id;

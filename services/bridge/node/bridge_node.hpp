@@ -23,9 +23,18 @@ namespace twinslam::bridge {
 // One channel per topic of dds::topics::kAll, ids from 1 in the table's order.
 std::vector<Channel> dds_channels();
 
+// A vehicle's ground truth for the view (`twinslam-bridge --truth VEHICLE=FILE`).
+struct VehicleTruth {
+  std::string vehicle_id;
+  std::vector<foxglove::StampedPoseW> T_WB;
+};
+// "VEHICLE=FILE" (TUM T_WB, the dataset's groundtruth.tum) read; InputError / UsageError naming the file or the text.
+VehicleTruth load_vehicle_truth(const std::string& spec);
+
 class BridgeNode {
  public:
-  BridgeNode(dds::Node& node, dds::Counters& counters, const BridgeConfig& config);
+  // config.origin (if set) and `truth` are in place before the first message is read.
+  BridgeNode(dds::Node& node, dds::Counters& counters, const BridgeConfig& config, std::vector<VehicleTruth> truth = {});
   ~BridgeNode();  // closes the node's readers first
   BridgeNode(const BridgeNode&) = delete;
   BridgeNode& operator=(const BridgeNode&) = delete;

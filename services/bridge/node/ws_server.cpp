@@ -13,6 +13,8 @@
 #include <boost/beast/websocket.hpp>
 #include <spdlog/spdlog.h>
 
+#include "twinslam/bridge/static_files.hpp"
+
 namespace twinslam::bridge {
 
 namespace asio = boost::asio;
@@ -32,6 +34,7 @@ struct Shared {  // written on the I/O thread only, but clients (atomic)
   std::vector<Channel> channels;
   std::map<std::uint32_t, std::map<std::string, Latched>> latched;  // channel -> latch key -> last message
   std::string name, session_id;
+  std::filesystem::path web_root;
   std::size_t max_queued = 0;
   dds::Counters* counters = nullptr;
   std::atomic<std::uint64_t> clients{0};
@@ -85,7 +88,8 @@ class Session : public std::enable_shared_from_this<Session> {
   }
 
   void on_request(beast::error_code ec) {
-    if (ec || !websocket::is_upgrade(request_)) return fail("handshake", ec);
+    if (ec) return fail("handshake", ec);
+    if (!websocket::is_upgrade(request_)) return serve_file();
     // The spec: the server must select a subprotocol the client offered; Foxglove offers foxglove.websocket.v1.
     const std::string offered(request_[http::field::sec_websocket_protocol]);
     if (offered.find(kSubprotocol) == std::string::npos) {
@@ -96,6 +100,27 @@ class Session : public std::enable_shared_from_this<Session> {
       res.set(http::field::sec_websocket_protocol, kSubprotocol);
     }));
     ws_.async_accept(request_, [self = shared_from_this()](beast::error_code e) { self->on_accept(e); });
+  }
+
+  // Plain HTTP on the same port: the web view's files (static_files.hpp), one request per connection.
+  void serve_file() {
+    StaticReply r = serve_static(shared_.web_root, std::string(request_.method_string()), std::string(request_.target()));
+    auto res = std::make_shared<http::response<http::string_body>>(static_cast<http::status>(r.status),
+                                                                    request_.version());
+    res->set(http::field::server, "twinslam-bridge");
+    res->set(http::field::content_type, r.content_type);
+    res->set(http::field::cache_control, "no-cache");  // a rebuilt view must not be shadowed by a cached one
+    res->keep_alive(false);
+    if (request_.method() == http::verb::head) {
+      res->content_length(r.body.size());
+    } else {
+      res->body() = std::move(r.body);
+      res->prepare_payload();
+    }
+    http::async_write(ws_.next_layer(), *res, [self = shared_from_this(), res](beast::error_code e, std::size_t) {
+      self->fail("http", e);
+      self->close();
+    });
   }
 
   void on_accept(beast::error_code ec) {
@@ -204,11 +229,12 @@ struct WsServer::Impl {
 };
 
 WsServer::WsServer(const std::string& address, unsigned short port, std::vector<Channel> channels, std::string name,
-                   std::size_t max_queued, dds::Counters& counters)
+                   std::size_t max_queued, dds::Counters& counters, std::filesystem::path web_root)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.shared.channels = std::move(channels);
   m.shared.name = std::move(name);
+  m.shared.web_root = std::move(web_root);
   m.shared.session_id = std::to_string(std::chrono::system_clock::now().time_since_epoch().count());
   m.shared.max_queued = max_queued;
   m.shared.counters = &counters;

@@ -4,9 +4,11 @@
 // as Message Data frames to the subscribed ones. Channels can be added while clients are connected (advertised to
 // them at once): the bridge's per-vehicle channels appear with their vehicle. publish() never blocks the caller (a
 // DDS listener thread): frames are queued per client and, past `max_queued` frames, the oldest are dropped and
-// counted — a slow viewer must never slow the pipeline.
+// counted — a slow viewer must never slow the pipeline. A plain HTTP GET on the same port gets the web view's files
+// from `web_root` (static_files.hpp): http://HOST:PORT/ opens the view, which connects back to ws://HOST:PORT/.
 #include <atomic>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,7 +26,7 @@ class WsServer {
   // cannot listen. Counts clients_accepted, frames_sent (Message Data written) and frames_dropped (from a full
   // client queue) in `counters`, which must outlive the server.
   WsServer(const std::string& address, unsigned short port, std::vector<Channel> channels, std::string name,
-           std::size_t max_queued, dds::Counters& counters);
+           std::size_t max_queued, dds::Counters& counters, std::filesystem::path web_root = {});
   ~WsServer();  // closes every client and joins the I/O thread
   WsServer(const WsServer&) = delete;
   WsServer& operator=(const WsServer&) = delete;

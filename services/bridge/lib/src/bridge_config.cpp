@@ -17,7 +17,9 @@ void BridgeConfig::validate(const std::string& source) const {
 void bind_bridge_config(yaml::Fields& fields, BridgeConfig& config) {
   fields.text("address", config.address, "an interface address")
       .integer("port", config.port)
-      .integer("max_queued", config.max_queued);
+      .integer("max_queued", config.max_queued)
+      .text("web_root", config.web_root, "a directory")
+      .text("origin", config.origin, "\"LAT,LON,H\"");
 }
 
 BridgeConfig parse_bridge_config(const std::string& text, const std::string& file, const BridgeConfig& base) {
