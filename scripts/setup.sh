@@ -18,19 +18,21 @@ if (( ${#missing[@]} )); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-# The official MCAP reader (@mcap/core) and Foxglove's OMG IDL decoder (@foxglove/omgidl-*), in tests/node, check
-# that Foxglove can read our MCAP files (McapNode.OfficialReaderReadsTheSampleFile, McapRecording.*). npm ci installs exactly package-lock.json; rerun only when
-# node_modules is missing or older than the lock file (npm rewrites node_modules/.package-lock.json on every install).
-node_dir=$root/tests/node
-installed=$node_dir/node_modules/.package-lock.json
-if [[ ! -f "$installed" || "$node_dir/package-lock.json" -nt "$installed" ]]; then
+# npm packages, installed exactly as package-lock.json says (npm ci), rerun only when node_modules is missing or older
+# than the lock file (npm rewrites node_modules/.package-lock.json on every install):
+#   services/bridge/web  three.js and esbuild: the web view, bundled at build time (services/bridge/web.cmake)
+#   tests/node           the official MCAP reader (@mcap/core), Foxglove's OMG IDL decoder and WebSocket client, and
+#                        playwright-core (the web view in Debian's chromium): the Node checks of the test suite
+for node_dir in "$root/services/bridge/web" "$root/tests/node"; do
+  installed=$node_dir/node_modules/.package-lock.json
+  [[ -f "$installed" && ! "$node_dir/package-lock.json" -nt "$installed" ]] && continue
   if command -v npm >/dev/null; then
-    echo "setup: npm ci in tests/node" >&2
+    echo "setup: npm ci in ${node_dir#$root/}" >&2
     (cd "$node_dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
   else
-    echo "setup: npm not found: the MCAP official-reader test will fail" >&2
+    echo "setup: npm not found: ${node_dir#$root/} is not installed (the web view and the Node checks need it)" >&2
   fi
-fi
+done
 
 [[ -n "${TWINSLAM_SETUP_PACKAGES_ONLY:-}" ]] && exit 0
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null

@@ -18,5 +18,6 @@ void add_register_command(CLI::App& app, int& exit_code);  // cmd_register.cpp
 void add_gnss_command(CLI::App& app, int& exit_code);      // cmd_gnss.cpp
 void add_export_command(CLI::App& app, int& exit_code);    // cmd_export.cpp
 void add_record_command(CLI::App& app, int& exit_code);    // cmd_record.cpp
+void add_view_command(CLI::App& app, int& exit_code);      // cmd_view.cpp
 
 }  // namespace twinslam::cli

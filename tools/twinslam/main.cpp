@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   twinslam::cli::add_gnss_command(app, exit_code);
   twinslam::cli::add_export_command(app, exit_code);
   twinslam::cli::add_record_command(app, exit_code);
+  twinslam::cli::add_view_command(app, exit_code);
   return twinslam::guarded_main("twinslam", [&] {
     twinslam::init_logging("info");
     try {
