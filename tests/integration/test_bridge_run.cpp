@@ -3,8 +3,6 @@
 // the way Foxglove connects) subscribes to every advertised channel; every message it receives decodes with the OMG
 // IDL schema its channel advertised (@foxglove/omgidl-*), and the run's streams reach it live — with the dataset's
 // ground truth and its GNSS fixes in W next to the estimate (run passes the bridge --truth and --origin).
-#include <netinet/in.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -27,19 +25,6 @@ const fs::path& base() {
   return dir;
 }
 
-// A TCP port nobody listens on now (the kernel's pick for port 0).
-int free_port() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof a;
-  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
-  ::close(fd);
-  return ntohs(a.sin_port);
-}
-
 // The last line of the client's output: its JSON verdict.
 nlohmann::json last_json_line(const std::string& output) {
   std::istringstream in(output);
@@ -56,7 +41,7 @@ TEST(FoxgloveBridge, AClientSubscribedToEveryChannelDecodesTheRunLive) {
                                       (base() / "tiny").string(), "--features", "--quiet"},
                                      {}, std::chrono::seconds(180));
   ASSERT_EQ(sim.exit_code, 0) << sim.out << sim.err;
-  const std::string port = std::to_string(free_port());
+  const std::string port = std::to_string(test::free_tcp_port());
   // Started first: it retries until the bridge listens, as an operator's Foxglove would.
   test::Background client({TWINSLAM_NODE, std::string(TWINSLAM_SOURCE_DIR) + "/tests/node/bridge_client.mjs",
                            "ws://127.0.0.1:" + port, "480"});

@@ -78,10 +78,15 @@ TEST(McapRecording, ATinyRunAndARecordOfItReadBackWithTheOfficialReaders) {
     ASSERT_FALSE(got.is_null());
     // Every topic of the table, used or not, and the well-known JSON channels the bridge serves (run_mcap.mjs
     // validated their messages against Foxglove's own schemas).
-    const std::map<std::string, std::string> well_known{
+    std::map<std::string, std::string> well_known{
         {"/uav0/estimate/pose", "foxglove.PoseInFrame"}, {"/uav0/estimate/path", "foxglove.PosesInFrame"},
         {"/uav0/landmarks", "foxglove.PointCloud"},      {"/uav0/registration", "twinslam.RegistrationHealth"},
-        {"/twin/tiles", "foxglove.SceneUpdate"},         {"/uav0/gnss", "foxglove.LocationFix"}};
+        {"/twin/tiles", "foxglove.SceneUpdate"},         {"/uav0/gnss", "foxglove.LocationFix"},
+        {"/services", "twinslam.ServiceState"}};
+    if (!is_record) {  // the run knows its dataset: the truth and the GNSS fixes in W are recorded too
+      well_known["/uav0/truth/path"] = "foxglove.PosesInFrame";
+      well_known["/uav0/gnss/path"] = "foxglove.PosesInFrame";
+    }
     EXPECT_GE(got["channels"].get<std::size_t>(), 11 + well_known.size()) << got["schemas"].dump();
     for (const auto& [topic, schema] : well_known) {
       EXPECT_EQ(got["schemas"].value(topic, ""), schema) << topic;

@@ -2,8 +2,6 @@
 // bridge's port, `twinslam view` finds it, and Debian's chromium (driven by playwright-core from npm,
 // tests/node/web_view.test.mjs, a test of node's runner) opens it: the twin's tiles are drawn and the trajectory
 // grows between two screenshots (checked on their pixels).
-#include <netinet/in.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -24,25 +22,13 @@ const fs::path& base() {
   return dir;
 }
 
-int free_port() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof a;
-  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
-  ::close(fd);
-  return ntohs(a.sin_port);
-}
-
 TEST(WebView, ChromiumSeesTheTilesAndAGrowingTrajectoryDuringATinyRun) {
   fs::remove_all(base());
   const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--out",
                                       (base() / "tiny").string(), "--features", "--quiet"},
                                      {}, std::chrono::seconds(180));
   ASSERT_EQ(sim.exit_code, 0) << sim.out << sim.err;
-  const std::string port = std::to_string(free_port());
+  const std::string port = std::to_string(test::free_tcp_port());
   // Nothing listens yet: `twinslam view` says so in one line (exit 2), no browser is started.
   const auto none = test::run_process({test::bin("twinslam"), "view", "--no-open", "--port", port});
   EXPECT_EQ(none.exit_code, 2) << none.out << none.err;

@@ -10,6 +10,8 @@
 #include <thread>
 
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -105,5 +107,19 @@ std::string bin(const std::string& name) { return std::string(TWINSLAM_BIN_DIR) 
 
 // Claimed on this host (domain_claim.hpp), so parallel test processes never share one.
 int test_domain() { return process::claim_dds_domain(10, 80, static_cast<unsigned>(getpid())); }
+
+int free_tcp_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) throw std::runtime_error("free_tcp_port: no socket");
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof a;
+  const bool ok = ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
+                  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) == 0;
+  ::close(fd);
+  if (!ok) throw std::runtime_error("free_tcp_port: bind failed");
+  return ntohs(a.sin_port);
+}
 
 }  // namespace twinslam::test

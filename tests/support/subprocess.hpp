@@ -36,6 +36,8 @@ class Background {
 };
 
 std::string bin(const std::string& name);  // path of a built executable
+// A TCP port nobody listens on now on the loopback interface (the kernel's pick for port 0).
+int free_tcp_port();
 // A DDS domain for one test: distinct per test process so parallel ctest jobs never share a domain.
 int test_domain();
 

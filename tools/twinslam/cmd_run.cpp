@@ -112,9 +112,9 @@ int run_pipeline(const RunOptions& o) {
     throw UsageError("mode '" + o.mode + "': its pose graph starts from the GNSS alignment; --initial-pose is not used");
   }
   if (uses_twin(o.mode) || needs_gnss(o.mode)) geo = read_dataset_geo(dataset.root);
-  // The bridge draws GNSS in W in every mode (the estimator gets an origin only in the modes above).
+  // The bridge and the MCAP recording draw GNSS in W in every mode (the estimator gets an origin only in the modes above).
   std::optional<DatasetGeo> view_geo = geo;
-  if (!view_geo && o.bridge_port >= 0 && !dataset.gnss.empty()) {
+  if (!view_geo && (o.bridge_port >= 0 || o.mcap) && !dataset.gnss.empty()) {
     try {  // a dataset without an origin still runs: its fixes are then only on Foxglove's Map panel
       view_geo = read_dataset_geo(dataset.root);
     } catch (const InputError&) {
@@ -188,6 +188,11 @@ int run_pipeline(const RunOptions& o) {
     hooks.well_known = [&mcap](const std::vector<foxglove::DerivedMessage>& d) { mcap->record(d); };
   }
   TopicMonitor monitor(recorder, /*reliable=*/true, hooks);
+  const fs::path truth = dataset.root / "groundtruth.tum";
+  if (o.mcap) {  // the recording's well-known channels hold the truth and GNSS in W too, as the bridge's do
+    if (fs::is_regular_file(truth)) monitor.well_known().set_truth(o.vehicle, foxglove::read_truth_tum(truth.string()));
+    if (view_geo) monitor.well_known().set_origin(origin_text(view_geo->origin));
+  }
 
   const std::string replay = o.realtime ? "--realtime" : "--max";
   // With --features the dataset's ideal tracks replace the image frontend.
@@ -209,8 +214,7 @@ int run_pipeline(const RunOptions& o) {
     if (s == "bridge") {  // every vehicle; the view also draws the dataset's truth and GNSS in W
       args = {"--vehicle", "", replay, "--port", std::to_string(o.bridge_port)};
       if (view_geo) args.insert(args.end(), {"--origin", origin_text(view_geo->origin)});
-      const auto truth = dataset.root / "groundtruth.tum";
-      if (std::filesystem::is_regular_file(truth)) args.insert(args.end(), {"--truth", o.vehicle + "=" + truth.string()});
+      if (fs::is_regular_file(truth)) args.insert(args.end(), {"--truth", o.vehicle + "=" + truth.string()});
     }
     if (s == "estimator") {
       args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});

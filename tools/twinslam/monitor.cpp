@@ -29,6 +29,7 @@ TopicMonitor::TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks) :
     if (spec.name == dds::topics::kHeartbeat.name) {
       const auto& st = node.subscribe<msg::Heartbeat>(spec, [this, &spec](const msg::Heartbeat& hb) {
         if (hooks_.cdr) hooks_.cdr(spec, dds::to_cdr(hb));
+        if (hooks_.well_known) hooks_.well_known(well_known_.on(hb));
         ServiceInfo info{hb.service(), hb.instance(), hb.vehicle_id(), dds::to_string(hb.state()), hb.uptime_ms(), {}};
         for (const auto& c : hb.counters()) info.counters[c.name()] = c.value();
         std::lock_guard lock(mutex_);

@@ -52,6 +52,8 @@ class TopicMonitor {
   std::vector<ServiceInfo> services() const;  // latest heartbeat per instance, sorted by service
   // True once every named service has announced ready/running/done.
   bool all_ready(const std::vector<std::string>& services) const;
+  // The well-known channels' state: a run gives it the dataset's truth and origin for its MCAP recording.
+  foxglove::DerivedChannels& well_known() { return well_known_; }
 
  private:
   struct Entry {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <exception>
 
+#include "twinslam/trajectory/io.hpp"
 #include "twinslam/twin/geo.hpp"
 
 namespace twinslam::foxglove {
@@ -18,6 +19,16 @@ bool finite(const PoseW& T) {
 }
 
 }  // namespace
+
+std::vector<StampedPoseW> read_truth_tum(const std::string& file) {
+  std::vector<StampedPoseW> out;
+  for (const StampedPose& p : read_tum(file).poses) {
+    const Eigen::Quaterniond q = p.q_XB();
+    const Eigen::Vector3d t = p.p_X();
+    out.push_back({p.stamp_ns, {{t.x(), t.y(), t.z()}, {q.w(), q.x(), q.y(), q.z()}}});
+  }
+  return out;
+}
 
 DerivedChannels::DerivedChannels(DerivedChannelsConfig config) : config_(config) {}
 DerivedChannels::~DerivedChannels() = default;

@@ -8,7 +8,6 @@
 #include "twinslam/core/wall_clock.hpp"
 #include "twinslam/dds/cdr.hpp"
 #include "twinslam/dds/dispatch.hpp"
-#include "twinslam/trajectory/io.hpp"
 
 namespace twinslam::bridge {
 
@@ -26,13 +25,7 @@ VehicleTruth load_vehicle_truth(const std::string& spec) {
   if (eq == std::string::npos || eq + 1 == spec.size()) {
     throw UsageError("--truth '" + spec + "': expected VEHICLE=FILE (a TUM file of T_WB)");
   }
-  VehicleTruth out{spec.substr(0, eq), {}};
-  for (const StampedPose& p : read_tum(spec.substr(eq + 1)).poses) {
-    const Eigen::Quaterniond q = p.q_XB();
-    const Eigen::Vector3d t = p.p_X();
-    out.T_WB.push_back({p.stamp_ns, {{t.x(), t.y(), t.z()}, {q.w(), q.x(), q.y(), q.z()}}});
-  }
-  return out;
+  return {spec.substr(0, eq), foxglove::read_truth_tum(spec.substr(eq + 1))};
 }
 
 BridgeNode::BridgeNode(dds::Node& node, dds::Counters& counters, const BridgeConfig& config,

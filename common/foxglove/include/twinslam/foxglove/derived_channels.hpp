@@ -33,6 +33,8 @@ struct StampedPoseW {
   std::int64_t stamp_ns = 0;  // the estimate's clock (the dataset's sensor time) [ns]
   PoseW T_WB;
 };
+// A TUM file of T_WB (a dataset's groundtruth.tum) for set_truth; InputError naming FILE:LINE when malformed.
+std::vector<StampedPoseW> read_truth_tum(const std::string& file);
 
 struct DerivedMessage {
   std::string topic;
