@@ -22,10 +22,15 @@ void add_echo_command(CLI::App& app, int& exit_code) {
   auto count = std::make_shared<long>(0);
   auto timeout = std::make_shared<double>(0.0);
   auto domain = std::make_shared<int>(-1);
+  auto profile = std::make_shared<std::string>("twinslam.local");
+  auto security = std::make_shared<std::string>();
   cmd->add_option("topic", *topic, "Topic name, e.g. twinslam/v1/imu or just imu")->required();
   cmd->add_option("--count", *count, "Stop after N messages (0 = until Ctrl-C)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--timeout", *timeout, "Give up after this many seconds (0 = never); exit 1 if fewer than --count");
   cmd->add_option("--domain", *domain, "DDS domain (default: $TWINSLAM_DOMAIN or 0)");
+  cmd->add_option("--profile", *profile, "Participant profile (twinslam.secure.ops on a secured domain)")
+      ->capture_default_str();
+  cmd->add_option("--security", *security, "DDS-Security files of a secured profile (default: $TWINSLAM_SECURITY_DIR)");
   cmd->callback([=, &exit_code] {
     const dds::TopicSpec* spec = dds::find_topic(*topic);
     if (spec == nullptr) {
@@ -38,6 +43,8 @@ void add_echo_command(CLI::App& app, int& exit_code) {
     config.service = "echo";
     config.vehicle_id = "";
     config.domain = *domain;
+    config.participant_profile = *profile;
+    config.security_dir = *security;
     dds::Node node(config);
     auto printed = std::make_shared<std::atomic<long>>(0);
     auto out_mutex = std::make_shared<std::mutex>();

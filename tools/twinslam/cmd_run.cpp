@@ -23,6 +23,7 @@
 #include "run_pipeline.hpp"
 #include "twinslam/dds/convert.hpp"
 #include "run_record.hpp"
+#include "run_security.hpp"
 #include "twin_changes_report.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
@@ -133,10 +134,15 @@ int run_pipeline(const RunOptions& o) {
   install_shutdown_handlers();
   const auto wall0 = std::chrono::steady_clock::now();
 
+  const fs::path security = o.secure ? ensure_security_files(o.security_dir, o.quiet) : fs::path();
   dds::NodeConfig cfg;
   cfg.service = "run";
   cfg.vehicle_id = o.vehicle;
   cfg.domain = domain;
+  if (o.secure) {
+    cfg.participant_profile = secure_profile("run");
+    cfg.security_dir = security.string();
+  }
   dds::Node recorder(cfg);
   RunRecord record;
   const auto since_ms = [wall0] {
@@ -233,6 +239,7 @@ int run_pipeline(const RunOptions& o) {
       }
     }
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
+    if (o.secure) args.insert(args.end(), {"--profile", secure_profile(s), "--security", security.string()});
     process::ProcessSpec spec{s, "twinslam-" + s, args, env, {}, false};
     // The edge services come back after a crash (issue 14): the estimator flies on without them meanwhile.
     spec.restart_on_failure = s == "tiles" || s == "registration" || s == "bridge";
@@ -261,6 +268,9 @@ int run_pipeline(const RunOptions& o) {
                                            std::to_string(dataset.gnss.empty() ? 0 : gnss_readers)};
   if (o.features) ingest_args.push_back("--features");
   for (auto& a : config_args(o.config_dir, "ingest")) ingest_args.push_back(std::move(a));
+  if (o.secure) {
+    ingest_args.insert(ingest_args.end(), {"--profile", secure_profile("ingest"), "--security", security.string()});
+  }
   // Lockstep: the next frame goes out once every stage has finished the previous one.
   if (!o.realtime) ingest_args.insert(ingest_args.end(), {"--ack-from", o.features ? "estimator" : "tracking,estimator"});
   supervisor.start({"ingest", "twinslam-ingest", ingest_args, env, {}, true});
@@ -298,6 +308,7 @@ int run_pipeline(const RunOptions& o) {
                      {"config_dir", o.config_dir.empty() ? nlohmann::json()  // null: every service on its defaults
                                                          : nlohmann::json(fs::absolute(o.config_dir).string())},
                      {"domain", domain},
+                     {"secure", o.secure},
                      {"messages", messages},
                      {"services", svc},
                      {"poses", record.odometry_count()}};
@@ -377,6 +388,12 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--features", o->features, "Feed the dataset's ideal feature tracks instead of images");
   cmd->add_option("--vehicle", o->vehicle, "Vehicle id")->capture_default_str();
   cmd->add_option("--domain", o->domain, "DDS domain (default: $TWINSLAM_DOMAIN, else a private one)");
+  cmd->add_flag("--secure", o->secure,
+                "DDS-Security: every process authenticated (drone, edge, ops identities), topics access-controlled, "
+                "payloads encrypted; files made on first use");
+  cmd->add_option("--security-dir", o->security_dir,
+                  "With --secure: the CA, identities and permissions (default: $TWINSLAM_SECURITY_DIR, else "
+                  "~/.local/state/twinslam/pki)");
   cmd->add_option("--start-timeout", o->start_timeout_s, "Seconds for the services to get ready")->capture_default_str();
   cmd->add_option("--weights", o->weights, "Twin modes: registration information weighting")
       ->check(CLI::IsMember({"paper", "adaptive", "fixed"}))

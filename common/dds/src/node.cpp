@@ -17,6 +17,8 @@
 #include "twinslam/core/error.hpp"
 #include "twinslam/dds/fastdds_log.hpp"
 
+#include "security.hpp"
+
 namespace twinslam::dds {
 
 namespace fdds = eprosima::fastdds::dds;
@@ -87,10 +89,16 @@ Node::Node(NodeConfig config) : config_(std::move(config)) {
   if (factory->get_participant_qos_from_profile(config_.participant_profile, qos) != ReturnCode_t::RETCODE_OK) {
     throw UsageError(qos_file + ": no participant profile named '" + config_.participant_profile + "'");
   }
+  secured_ = detail::resolve_security_files(qos, config_.participant_profile, config_.security_dir);
   qos.name("twinslam/" + config_.service);
   participant_ = factory->create_participant(domain, qos);
   if (participant_ == nullptr) {
-    throw std::runtime_error("cannot create DDS participant in domain " + std::to_string(domain));
+    // A secured participant fails here when its certificate, key or signed documents do not verify (Fast DDS logs
+    // the reason at error level, which route_fastdds_log shows).
+    throw std::runtime_error("cannot create DDS participant in domain " + std::to_string(domain) +
+                             (secured_ ? " with the DDS-Security files of profile '" + config_.participant_profile +
+                                             "' (see the Fast DDS error above)"
+                                       : std::string()));
   }
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);

@@ -16,6 +16,8 @@ void add_service_options(CLI::App& app, ServiceOptions& options) {
   app.add_option("--qos", options.node.qos_file, "Fast DDS XML profile file (default: $TWINSLAM_QOS_FILE or built-in)");
   app.add_option("--profile", options.node.participant_profile, "Participant profile in the QoS file")
       ->capture_default_str();
+  app.add_option("--security", options.node.security_dir,
+                 "DDS-Security files for a twinslam.secure.* profile (default: $TWINSLAM_SECURITY_DIR)");
   auto* rt = app.add_flag("--realtime", options.realtime, "Live QoS: sensor writers never block");
   app.add_flag("--max", options.lockstep_flag, "Lockstep QoS: lossless, repeatable replay (default)")->excludes(rt);
   app.add_option("--log-level", options.log_level, "trace|debug|info|warn|error")->capture_default_str();

@@ -35,6 +35,7 @@ struct NodeConfig {
   int domain = -1;                                      // -1: $TWINSLAM_DOMAIN, else 0
   std::string participant_profile = "twinslam.local";   // profile in the QoS file
   std::string qos_file;                                 // empty: $TWINSLAM_QOS_FILE, else the built-in default
+  std::string security_dir;                             // secured profiles' files; empty: $TWINSLAM_SECURITY_DIR
   Replay replay = Replay::Lockstep;                     // QoS of sensor writers
 };
 
@@ -97,6 +98,8 @@ class Node {
   Node& operator=(const Node&) = delete;
 
   const NodeConfig& config() const { return config_; }
+  // True when the participant profile enables DDS-Security (authentication, access control, encryption).
+  bool secured() const { return secured_; }
 
   // Writer on `topic` with its family's profile (or `profile` if given).
   template <class T>
@@ -132,6 +135,7 @@ class Node {
                    std::unique_ptr<eprosima::fastdds::dds::DataReaderListener> listener);
 
   NodeConfig config_;
+  bool secured_ = false;
   std::mutex mutex_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
