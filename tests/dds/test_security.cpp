@@ -11,10 +11,10 @@
 #include <fstream>
 #include <mutex>
 #include <set>
-#include <sstream>
 #include <thread>
 
 #include "subprocess.hpp"
+#include "text_file.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/dds/node.hpp"
 #include "wait_for.hpp"
@@ -24,13 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
@@ -72,7 +65,7 @@ class DdsSecurity : public ::testing::Test {
     // The forger: its own CA signs a copy of the guest's grant that allows every topic, and the governance.
     fs::create_directories(pki_ / "forged");
     write_text(pki_ / "forged/permissions.xml",
-               replace_all(read_text(pki_ / "guest/permissions.xml"), "twinslam/v1/heartbeat", "*"));
+               replace_all(test::read_text(pki_ / "guest/permissions.xml"), "twinslam/v1/heartbeat", "*"));
     const std::string forge =
         "cd '" + (pki_ / "forged").string() +
         "' && openssl ecparam -name prime256v1 -genkey -noout -out ca.key && openssl req -x509 -new -key ca.key "
@@ -82,7 +75,7 @@ class DdsSecurity : public ::testing::Test {
     const auto forged = test::run_process({"/bin/bash", "-c", forge});
     ASSERT_EQ(forged.exit_code, 0) << forged.err;
     // One profile file for every participant of the process: the project's, plus the guest and the forger.
-    std::string xml = read_text(std::string(TWINSLAM_SOURCE_DIR) + "/deploy/qos/twinslam.xml");
+    std::string xml = test::read_text(std::string(TWINSLAM_SOURCE_DIR) + "/deploy/qos/twinslam.xml");
     const auto end = xml.find("</profiles>");
     ASSERT_NE(end, std::string::npos);
     xml.insert(end, test_profile("test.secure.guest", pki_, "") + test_profile("test.secure.forger", pki_, "forged"));

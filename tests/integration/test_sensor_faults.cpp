@@ -3,9 +3,6 @@
 // pipeline and checks that nothing crashed, that the Odometry reported what happened (run.json `odometry_faults`,
 // counted from every pose), and that the trajectory after recovery stays within 2x the ATE of the same run without
 // faults.
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -16,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "file_lock.hpp"
 #include "subprocess.hpp"
 #include "text_file.hpp"
 
@@ -27,19 +25,7 @@ namespace {
 
 const fs::path kWork = TWINSLAM_FAULTS_WORK_DIR;
 
-// Holds an exclusive lock on a file for the life of the object: ctest runs these tests in parallel processes, and
-// the dataset and the clean run are made once and shared.
-class FileLock {
- public:
-  explicit FileLock(const fs::path& file) : fd_(::open(file.c_str(), O_CREAT | O_RDWR, 0644)) { ::flock(fd_, LOCK_EX); }
-  ~FileLock() {
-    ::flock(fd_, LOCK_UN);
-    ::close(fd_);
-  }
-
- private:
-  int fd_;
-};
+using test::FileLock;
 
 // A file's text, or "" if it does not exist.
 

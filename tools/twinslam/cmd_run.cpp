@@ -95,6 +95,16 @@ int pick_domain(int requested) {
   return process::claim_dds_domain(100, 100, static_cast<unsigned>(getpid()));
 }
 
+// The edge on another "host": the service started by `ip netns exec NAME` (which execs it: same pid, same signals).
+process::ProcessSpec in_netns(const std::string& netns, process::ProcessSpec spec) {
+  const fs::path exe = process::resolve_executable(spec.exec);
+  if (exe.empty()) throw UsageError("service '" + spec.name + "': executable '" + spec.exec + "' not found");
+  if (process::resolve_executable("ip").empty()) throw UsageError("--edge-netns: the `ip` command is not found");
+  spec.args.insert(spec.args.begin(), {"netns", "exec", netns, exe.string()});
+  spec.exec = "ip";
+  return spec;
+}
+
 }  // namespace
 
 int run_pipeline(const RunOptions& o) {
@@ -241,6 +251,7 @@ int run_pipeline(const RunOptions& o) {
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
     if (o.secure) args.insert(args.end(), {"--profile", secure_profile(s), "--security", security.string()});
     process::ProcessSpec spec{s, "twinslam-" + s, args, env, {}, false};
+    if (!o.edge_netns.empty() && (s == "tiles" || s == "registration")) spec = in_netns(o.edge_netns, spec);
     // The edge services come back after a crash (issue 14): the estimator flies on without them meanwhile.
     spec.restart_on_failure = s == "tiles" || s == "registration" || s == "bridge";
     supervisor.start(spec);
@@ -309,6 +320,7 @@ int run_pipeline(const RunOptions& o) {
                                                          : nlohmann::json(fs::absolute(o.config_dir).string())},
                      {"domain", domain},
                      {"secure", o.secure},
+                     {"edge_netns", o.edge_netns.empty() ? nlohmann::json() : nlohmann::json(o.edge_netns)},
                      {"messages", messages},
                      {"services", svc},
                      {"poses", record.odometry_count()}};
@@ -394,6 +406,8 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--security-dir", o->security_dir,
                   "With --secure: the CA, identities and permissions (default: $TWINSLAM_SECURITY_DIR, else "
                   "~/.local/state/twinslam/pki)");
+  cmd->add_option("--edge-netns", o->edge_netns,
+                  "Run tiles and registration in this network namespace (`ip netns exec`; scripts/two-hosts.sh)");
   cmd->add_option("--start-timeout", o->start_timeout_s, "Seconds for the services to get ready")->capture_default_str();
   cmd->add_option("--weights", o->weights, "Twin modes: registration information weighting")
       ->check(CLI::IsMember({"paper", "adaptive", "fixed"}))

@@ -46,6 +46,8 @@ class IngestNode::Impl {
     if (opt_.faults.any()) spdlog::warn("injecting sensor faults: {}", describe_plan(plan));
     const std::int64_t t0 = plan.front().event.stamp_ns;
     const auto wall0 = Clock::now();
+    // The log's clock meets the sensor clock here: fault scripts place wall-clock events on the flight with it.
+    spdlog::info("replay starts at sensor stamp {} ns ({})", t0, opt_.realtime ? "realtime" : "lockstep");
     std::int64_t pending_frame = -1;  // stamp of the last frame sent and not yet acknowledged
     for (const auto& [ev, action, fault] : plan) {
       if (shutdown_requested()) return false;

@@ -1,0 +1,129 @@
+// The drone-edge link (issue 14 items 3 and 5), each case a tiny vio-twin run in lockstep compared with the same run
+// on one host (made once, shared by the cases under a file lock): the pipeline under DDS-Security (`run --secure`)
+// while a listener without a certificate hears nothing, and the drone and the edge in network namespaces of their own
+// over a veth link (scripts/two-hosts.sh), discovering through initial peers or a discovery server. Lockstep replay
+// is deterministic, so each must give the one-host trajectory to the byte.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <regex>
+
+#include <nlohmann/json.hpp>
+
+#include "file_lock.hpp"
+#include "subprocess.hpp"
+#include "text_file.hpp"
+
+namespace twinslam {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+const fs::path kWork = TWINSLAM_LINK_WORK_DIR;
+
+// The tiny dataset and its one-host vio-twin run, once per build of the executables.
+fs::path reference_run() {
+  fs::create_directories(kWork);
+  test::FileLock lock(kWork / "lock");
+  std::string stamp;
+  for (const char* exe : {"twinslam", "twinslam-estimator", "twinslam-registration", "twinslam-tiles"}) {
+    stamp += std::to_string(fs::last_write_time(test::bin(exe)).time_since_epoch().count()) + " ";
+  }
+  if (test::read_text(kWork / "stamp") != stamp) {
+    fs::remove_all(kWork / "tiny");
+    fs::remove_all(kWork / "one-host");
+    const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--out",
+                                        (kWork / "tiny").string(), "--features", "--quiet"}, {}, 180s);
+    if (sim.exit_code != 0) throw std::runtime_error("sim tiny failed: " + sim.out + sim.err);
+    const auto run = test::run_process({test::bin("twinslam"), "run", (kWork / "tiny").string(), "--mode", "vio-twin",
+                                        "--features", "--out", (kWork / "one-host").string(), "--no-progress",
+                                        "--domain", std::to_string(test::test_domain())}, {}, 180s);
+    if (run.exit_code != 0) throw std::runtime_error("the one-host run failed: " + run.out + run.err);
+    std::ofstream(kWork / "stamp") << stamp;
+  }
+  return kWork / "one-host";
+}
+
+nlohmann::json run_json(const fs::path& run) { return nlohmann::json::parse(test::read_text(run / "run.json")); }
+
+TEST(DroneEdgeLink, TheSecuredPipelineFliesTheSameAndAListenerWithoutCertificateHearsNothing) {
+  const fs::path reference = reference_run();
+  const fs::path base = kWork / ("secured-" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  const std::string d = std::to_string(test::test_domain());
+  // A listener without a certificate on the secured run's domain, for the whole run: it must hear no Odometry.
+  test::Background uncertified({test::bin("twinslam"), "echo", "odometry", "--count", "1", "--timeout", "60",
+                                "--domain", d});
+  const auto secured = test::run_process({test::bin("twinslam"), "run", (kWork / "tiny").string(), "--mode",
+                                          "vio-twin", "--features", "--out", (base / "run").string(), "--no-progress",
+                                          "--domain", d, "--secure", "--security-dir", (base / "pki").string()},
+                                         {}, 180s);
+  ASSERT_EQ(secured.exit_code, 0) << secured.out << secured.err;
+  EXPECT_NE(secured.err.find("making DDS-Security files"), std::string::npos) << secured.err;
+  ASSERT_TRUE(fs::is_regular_file(base / "pki/drone/permissions.p7s"));
+  const auto json = run_json(base / "run");
+  EXPECT_EQ(json["status"], "ok");
+  EXPECT_EQ(json["secure"], true);
+  EXPECT_GT(json["messages"]["twinslam/v3/registration"], 0) << "the edge's registrations reached the drone";
+  // Security changes nothing of what the estimator computes.
+  EXPECT_EQ(test::read_text(base / "run/trajectory.tum"), test::read_text(reference / "trajectory.tum"));
+  uncertified.signal(SIGINT);
+  EXPECT_EQ(uncertified.wait(10s), 1) << "a participant without a certificate received: " << uncertified.output();
+  EXPECT_EQ(uncertified.output().find("stamp_ns"), std::string::npos) << uncertified.output();
+
+  // The ops identity (monitors, `twinslam echo`) hears a secured edge service with the files the run made.
+  test::Background edge({test::bin("twinslam-registration"), "--vehicle", "", "--profile", "twinslam.secure.edge",
+                         "--security", (base / "pki").string()},
+                        {{"TWINSLAM_DOMAIN", d}});
+  const auto ops = test::run_process({test::bin("twinslam"), "echo", "heartbeat", "--count", "1", "--timeout", "30",
+                                      "--domain", d, "--profile", "twinslam.secure.ops", "--security",
+                                      (base / "pki").string()},
+                                     {}, 60s);
+  EXPECT_EQ(ops.exit_code, 0) << ops.err;
+  EXPECT_NE(ops.out.find("registration"), std::string::npos) << ops.out;
+  edge.signal(SIGINT);
+  EXPECT_EQ(edge.wait(10s), 0) << edge.output();
+  fs::remove_all(base);
+}
+
+// Network namespaces need root (CAP_NET_ADMIN); elsewhere the case is skipped, saying so.
+bool can_make_namespaces() {
+  const std::string probe = "tw-probe-" + std::to_string(::getpid());
+  const auto made = test::run_process({"/bin/sh", "-c", "ip netns add " + probe + " && ip netns del " + probe}, {}, 20s);
+  return made.exit_code == 0;
+}
+
+void expect_two_hosts_fly_as_one(const std::string& discovery) {
+  if (!can_make_namespaces()) GTEST_SKIP() << "no network namespaces here (needs root and iproute2)";
+  const fs::path reference = reference_run();
+  const fs::path out = kWork / (discovery + "-" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const auto r = test::run_process({"/bin/bash", std::string(TWINSLAM_SOURCE_DIR) + "/scripts/two-hosts.sh",
+                                    (kWork / "tiny").string(), out.string(), "--discovery", discovery, "--features"},
+                                   {{"TWINSLAM_BIN", fs::path(test::bin("twinslam")).parent_path().string()}}, 240s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  // What crossed the veth: the drone's LocalMaps one way, the edge's tiles and registrations the other.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex("link carried (\\d+) bytes drone -> edge and (\\d+) bytes")))
+      << r.out;
+  EXPECT_GT(std::stod(m[1]), 1e6);
+  EXPECT_GT(std::stod(m[2]), 1e6);
+  const auto json = run_json(out / "run");
+  EXPECT_EQ(json["status"], "ok");
+  EXPECT_TRUE(json["edge_netns"].is_string());
+  EXPECT_GT(json["counters"]["registration"].value("local_maps_in", 0), 50) << "LocalMaps received on the edge";
+  EXPECT_GT(json["counters"]["estimator"].value("registrations_fused", 0), 5) << "registrations fused on the drone";
+  EXPECT_EQ(test::read_text(out / "run/trajectory.tum"), test::read_text(reference / "trajectory.tum"));
+  fs::remove_all(out);
+}
+
+TEST(DroneEdgeLink, TwoHostsDiscoveringThroughInitialPeersFlyAsOne) { expect_two_hosts_fly_as_one("peers"); }
+
+TEST(DroneEdgeLink, TwoHostsDiscoveringThroughADiscoveryServerFlyAsOne) { expect_two_hosts_fly_as_one("server"); }
+
+}  // namespace
+}  // namespace twinslam
