@@ -1,6 +1,7 @@
 // The tiles service's handlers without DDS (tiles_handler.hpp): what a diverged estimate, a broken GNSS fix or a
 // malformed request does — counted as rejected, no tile sent, the window left where it was.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -44,11 +45,15 @@ msg::Odometry odometry(const Eigen::Vector3d& p_W, msg::OdometryStatus status = 
 class TilesHandlerTest : public ::testing::Test {
  protected:
   TilesHandlerTest()
-      : handler(counters, plane_store(std::filesystem::path(::testing::TempDir()) / "tiles_handler_store"), "",
-                [this](const msg::MapTile& t) {
-                  sent.push_back(t.tile_key());
-                  return true;
-                }) {}
+      : handler(counters, plane_store(store_dir), "", [this](const msg::MapTile& t) {
+          sent.push_back(t.tile_key());
+          return true;
+        }) {}
+  ~TilesHandlerTest() override { std::filesystem::remove_all(store_dir); }
+  // One store per test process: ctest runs the cases of this fixture in parallel, and a shared folder was removed
+  // under a running case (CI: "cannot remove all: No such file or directory").
+  const std::filesystem::path store_dir =
+      std::filesystem::path(::testing::TempDir()) / ("tiles_handler_store_" + std::to_string(::getpid()));
   dds::Counters counters;
   std::vector<std::string> sent;
   TilesHandler handler;
