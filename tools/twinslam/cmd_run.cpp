@@ -23,6 +23,7 @@
 #include "run_pipeline.hpp"
 #include "twinslam/dds/convert.hpp"
 #include "run_record.hpp"
+#include "run_placement.hpp"
 #include "run_security.hpp"
 #include "twin_changes_report.hpp"
 #include "twinslam/core/error.hpp"
@@ -93,16 +94,6 @@ int pick_domain(int requested) {
   if (const char* env = std::getenv("TWINSLAM_DOMAIN"); env != nullptr && *env != '\0') return std::atoi(env);
   // Private per run, claimed on this host (domain_claim.hpp): parallel runs and tests stay apart.
   return process::claim_dds_domain(100, 100, static_cast<unsigned>(getpid()));
-}
-
-// The edge on another "host": the service started by `ip netns exec NAME` (which execs it: same pid, same signals).
-process::ProcessSpec in_netns(const std::string& netns, process::ProcessSpec spec) {
-  const fs::path exe = process::resolve_executable(spec.exec);
-  if (exe.empty()) throw UsageError("service '" + spec.name + "': executable '" + spec.exec + "' not found");
-  if (process::resolve_executable("ip").empty()) throw UsageError("--edge-netns: the `ip` command is not found");
-  spec.args.insert(spec.args.begin(), {"netns", "exec", netns, exe.string()});
-  spec.exec = "ip";
-  return spec;
 }
 
 }  // namespace
@@ -249,9 +240,7 @@ int run_pipeline(const RunOptions& o) {
       }
     }
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
-    if (o.secure) args.insert(args.end(), {"--profile", secure_profile(s), "--security", security.string()});
-    process::ProcessSpec spec{s, "twinslam-" + s, args, env, {}, false};
-    if (!o.edge_netns.empty() && (s == "tiles" || s == "registration")) spec = in_netns(o.edge_netns, spec);
+    process::ProcessSpec spec = place_service({s, "twinslam-" + s, args, env, {}, false}, o, security);
     // The edge services come back after a crash (issue 14): the estimator flies on without them meanwhile.
     spec.restart_on_failure = s == "tiles" || s == "registration" || s == "bridge";
     supervisor.start(spec);
@@ -279,12 +268,9 @@ int run_pipeline(const RunOptions& o) {
                                            std::to_string(dataset.gnss.empty() ? 0 : gnss_readers)};
   if (o.features) ingest_args.push_back("--features");
   for (auto& a : config_args(o.config_dir, "ingest")) ingest_args.push_back(std::move(a));
-  if (o.secure) {
-    ingest_args.insert(ingest_args.end(), {"--profile", secure_profile("ingest"), "--security", security.string()});
-  }
   // Lockstep: the next frame goes out once every stage has finished the previous one.
   if (!o.realtime) ingest_args.insert(ingest_args.end(), {"--ack-from", o.features ? "estimator" : "tracking,estimator"});
-  supervisor.start({"ingest", "twinslam-ingest", ingest_args, env, {}, true});
+  supervisor.start(place_service({"ingest", "twinslam-ingest", ingest_args, env, {}, true}, o, security));
   // One pose per camera frame: the bar counts the estimator's poses against the dataset's frames.
   Progress progress(o.progress_label, dataset.images.size(), o.progress);
   auto event = process::Supervisor::Event::Timeout;

@@ -1,0 +1,22 @@
+#include "run_placement.hpp"
+
+#include "run_security.hpp"
+#include "twinslam/core/error.hpp"
+
+namespace twinslam::cli {
+
+process::ProcessSpec place_service(process::ProcessSpec spec, const RunOptions& o,
+                                   const std::filesystem::path& security_dir) {
+  if (o.secure) {
+    spec.args.insert(spec.args.end(), {"--profile", secure_profile(spec.name), "--security", security_dir.string()});
+  }
+  if (o.edge_netns.empty() || (spec.name != "tiles" && spec.name != "registration")) return spec;
+  const auto exe = process::resolve_executable(spec.exec);
+  if (exe.empty()) throw UsageError("service '" + spec.name + "': executable '" + spec.exec + "' not found");
+  if (process::resolve_executable("ip").empty()) throw UsageError("--edge-netns: the `ip` command is not found");
+  spec.args.insert(spec.args.begin(), {"netns", "exec", o.edge_netns, exe.string()});
+  spec.exec = "ip";
+  return spec;
+}
+
+}  // namespace twinslam::cli
