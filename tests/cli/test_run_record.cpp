@@ -106,3 +106,29 @@ TEST(RunRecord, WithoutOdometryWritesNoTrajectory) {
   EXPECT_TRUE(fs::exists(dir / "timing.csv"));
   fs::remove_all(dir);
 }
+
+// An estimator that restarts mid-flight (issue 14's fault) is back in its own L, then aligns again: the poses of that
+// stretch are listed (run.json out_of_world_ns), so evaluation in W leaves them out; the stretch before the first
+// alignment is not one (aligned_from_stamp_ns covers it).
+TEST(RunRecord, ListsTheStretchesOutOfWAfterTheAlignment) {
+  cli::RunRecord rec;
+  const auto pose = [&rec](std::int64_t stamp, bool estimated, bool aligned) {
+    cli::OdometryRecord o;
+    o.stamp_ns = stamp;
+    o.estimated = estimated;
+    o.aligned = aligned;
+    rec.odometry(o, 0.0);
+  };
+  pose(1, false, false);
+  pose(2, true, false);
+  EXPECT_TRUE(rec.out_of_world_after_alignment().empty());
+  pose(3, true, true);
+  pose(4, true, true);
+  pose(5, false, false);  // killed and restarted: initializing
+  pose(6, true, false);   // tracking in its new L
+  pose(7, true, true);
+  pose(8, true, false);
+  EXPECT_EQ(rec.first_aligned_stamp_ns(), 3);
+  const std::vector<std::pair<std::int64_t, std::int64_t>> expected{{5, 6}, {8, 8}};
+  EXPECT_EQ(rec.out_of_world_after_alignment(), expected);
+}

@@ -116,6 +116,30 @@ TEST_F(EvalCli, AWorldFrameRunIsEvaluatedFromItsAlignmentOn) {
   EXPECT_NE(broken.err.find("run.json: not a run.json"), std::string::npos) << broken.err;
 }
 
+// An estimator restarted mid-flight is back in its own L until it aligns again: run.json out_of_world_ns lists that
+// stretch and eval leaves it out (here its poses are 50 m off), saying so.
+TEST_F(EvalCli, StretchesOutOfWAfterTheAlignmentAreLeftOut) {
+  Trajectory est = read_dataset_groundtruth(micro_);
+  const std::size_t n = est.poses.size();
+  const std::int64_t from = est.poses[n / 4].stamp_ns, gap0 = est.poses[n / 2].stamp_ns,
+                     gap1 = est.poses[n / 2 + n / 8].stamp_ns;
+  for (auto& pose : est.poses) {
+    const bool out_of_w = pose.stamp_ns < from || (pose.stamp_ns >= gap0 && pose.stamp_ns <= gap1);
+    pose.T_XB.translation().x() += out_of_w ? 50.0 : 0.1;
+  }
+  write_tum(dir_ / "run" / "trajectory.tum", est);
+  std::ofstream(dir_ / "run" / "run.json") << "{\"aligned_from_stamp_ns\": " << from
+                                           << ", \"aligned_after_s\": 1.0, \"out_of_world_ns\": [[" << gap0 << ", "
+                                           << gap1 << "]]}\n";
+  const Outcome o = run("--gt " + micro_ + " --est " + (dir_ / "run").string() + " --json");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto j = nlohmann::json::parse(o.out);
+  EXPECT_NEAR(j["ate_pos_rmse_m"].get<double>(), 0.1, 1e-9);
+  EXPECT_EQ(j["excluded_out_of_world_ns"][0][0], gap0);
+  const Outcome table = run("--gt " + micro_ + " --est " + (dir_ / "run").string());
+  EXPECT_NE(table.out.find("not evaluated: poses " + std::to_string(gap0)), std::string::npos) << table.out;
+}
+
 TEST_F(EvalCli, BadAlignmentAndMissingInputExitTwo) {
   EXPECT_EQ(run("--gt " + micro_ + " --est " + (dir_ / "run").string() + " --align se2").code, 2);
   const Outcome o = run("--gt " + micro_ + " --est " + (dir_ / "nothing").string());

@@ -115,6 +115,17 @@ TEST(CliErrors, BadServiceConfigNamesFileLineAndKey) {
   fs::remove_all(dir);
 }
 
+// --restart names services of the run; the estimator (or tracking) only with realtime replay, where no one waits
+// for its acknowledgement of each frame. Refused before anything starts.
+TEST(CliErrors, RunRefusesARestartItCannotHonour) {
+  const std::string out = "/tmp/twinslam_restart_run_" + std::to_string(::getpid());
+  expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--restart", "estimator"}),
+                   {"--restart estimator needs --realtime", "acknowledgement"});
+  expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--restart", "ingest"}),
+                   {"--restart: 'ingest' is not a service of the run"});
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(CliErrors, RunWithABadConfigDirStopsWithTheServicesLine) {
   const std::string out = "/tmp/twinslam_cfg_run_" + std::to_string(::getpid());
   const std::string domain = std::to_string(test::test_domain());

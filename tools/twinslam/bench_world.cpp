@@ -35,11 +35,24 @@ std::optional<WorldStart> read_world_start(const std::filesystem::path& run_dir,
     w.error_at_10s_m = (e->p_X() - g->p_X()).norm();
     w.error_at_10s_deg = Eigen::AngleAxisd(e->T_XB.linear() * g->T_XB.linear().transpose()).angle() * 180.0 / M_PI;
   }
+  if (j.contains("out_of_world_ns")) {
+    for (const auto& stretch : j["out_of_world_ns"]) {
+      w.out_of_world_ns.emplace_back(stretch.at(0).get<std::int64_t>(), stretch.at(1).get<std::int64_t>());
+    }
+  }
   if (j.contains("registration_latency_ms")) {
     w.latency_median_ms = j["registration_latency_ms"]["median"].get<double>();
     w.latency_p99_ms = j["registration_latency_ms"]["p99"].get<double>();
   }
   return w;
+}
+
+void keep_world_poses(Trajectory& est, const WorldStart& start) {
+  std::erase_if(est.poses, [&start](const StampedPose& p) {
+    if (p.stamp_ns < start.aligned_from_stamp_ns) return true;
+    return std::any_of(start.out_of_world_ns.begin(), start.out_of_world_ns.end(),
+                       [&p](const auto& s) { return p.stamp_ns >= s.first && p.stamp_ns <= s.second; });
+  });
 }
 
 }  // namespace twinslam::cli

@@ -135,8 +135,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
           code = kExitInternal;
           continue;
         }
-        const auto from = start->aligned_from_stamp_ns;
-        std::erase_if(est.poses, [from](const auto& p) { return p.stamp_ns < from; });
+        keep_world_poses(est, *start);
         aligned_after[mode] = start->aligned_after_s;
         starts[mode] = *start;
       }

@@ -39,10 +39,7 @@ int run_eval(const EvalOptions& o) {
     } catch (const nlohmann::json::exception& e) {
       throw InputError(run_json.string() + ": not a run.json: " + e.what());
     }
-    if (start) {
-      const auto from = start->aligned_from_stamp_ns;
-      std::erase_if(est.poses, [from](const auto& p) { return p.stamp_ns < from; });
-    }
+    if (start) keep_world_poses(est, *start);
   }
   const eval::EvalResult result = eval::evaluate(gt, est, config);
 
@@ -53,6 +50,7 @@ int run_eval(const EvalOptions& o) {
     j["gt_file"] = gt.source;
     j["est_file"] = est.source;
     if (start) j["evaluated_from_stamp_ns"] = start->aligned_from_stamp_ns;
+    if (start && !start->out_of_world_ns.empty()) j["excluded_out_of_world_ns"] = start->out_of_world_ns;
     std::cout << j.dump() << std::endl;  // exactly one object, one line: scripts parse stdout
   } else {
     std::cout << "ground truth " << gt.source << " (" << gt.size() << " poses)\n"
@@ -60,6 +58,10 @@ int run_eval(const EvalOptions& o) {
     if (start) {
       std::cout << "evaluated from the run's alignment to W on, " << start->aligned_after_s
                 << " s after its first estimate (run.json aligned_from_stamp_ns; before that it is in L)\n";
+      for (const auto& [first, last] : start->out_of_world_ns) {
+        std::cout << "not evaluated: poses " << first << "-" << last
+                  << " ns, not in W (run.json out_of_world_ns: the estimator had restarted or re-initialized)\n";
+      }
     }
     std::cout << eval::format_table(result);
     for (const auto& png : pngs) std::cout << "plot " << png.string() << '\n';

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <optional>
+#include <set>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -101,6 +102,7 @@ int pick_domain(int requested) {
 int run_pipeline(const RunOptions& o) {
   // Refused before anything starts or is written: run.json must never name a mode that did not run.
   require_implemented_mode(o.mode);
+  const std::set<std::string> restartable = restart_set(o);
   const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
   if (o.features) ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
   check_config_dir(o.config_dir);
@@ -242,7 +244,7 @@ int run_pipeline(const RunOptions& o) {
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
     process::ProcessSpec spec = place_service({s, "twinslam-" + s, args, env, {}, false}, o, security);
     // The edge services come back after a crash (issue 14): the estimator flies on without them meanwhile.
-    spec.restart_on_failure = s == "tiles" || s == "registration" || s == "bridge";
+    spec.restart_on_failure = restartable.contains(s);
     supervisor.start(spec);
   }
   const auto ready_deadline = std::chrono::steady_clock::now() +
@@ -331,6 +333,7 @@ int run_pipeline(const RunOptions& o) {
   // When T_WB entered W (null: never): world-frame evaluations start there (twinslam bench).
   const auto aligned = record.first_aligned_stamp_ns(), first = record.first_estimate_stamp_ns();
   run["aligned_from_stamp_ns"] = aligned ? nlohmann::json(*aligned) : nlohmann::json();
+  run["out_of_world_ns"] = record.out_of_world_after_alignment();
   run["aligned_after_s"] = aligned && first ? nlohmann::json(1e-9 * static_cast<double>(*aligned - *first))
                                             : nlohmann::json();
   if (const auto [median, largest] = record.local_map_landmarks(); largest > 0) {
@@ -394,6 +397,10 @@ void add_run_command(CLI::App& app, int& exit_code) {
                   "~/.local/state/twinslam/pki)");
   cmd->add_option("--edge-netns", o->edge_netns,
                   "Run tiles and registration in this network namespace (`ip netns exec`; scripts/two-hosts.sh)");
+  cmd->add_option("--restart", o->restart,
+                  "Services restarted after a crash, with back-off, comma-separated (estimator and tracking need "
+                  "--realtime; none: never)")
+      ->capture_default_str();
   cmd->add_option("--start-timeout", o->start_timeout_s, "Seconds for the services to get ready")->capture_default_str();
   cmd->add_option("--weights", o->weights, "Twin modes: registration information weighting")
       ->check(CLI::IsMember({"paper", "adaptive", "fixed"}))

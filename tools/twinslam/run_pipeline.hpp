@@ -20,6 +20,9 @@ struct RunOptions {
   bool secure = false;       // --secure: DDS-Security, each process with its role's identity (run_security.hpp)
   std::string security_dir;  // --security-dir: its files (empty: $TWINSLAM_SECURITY_DIR, else the user's state dir)
   double start_timeout_s = 60;
+  // --restart: the services that come back after a crash, with back-off (issue 14: the edge services by default;
+  // the estimator or tracking only with --realtime, as in lockstep ingest waits for their acknowledgement of each frame)
+  std::string restart = "tiles,registration,bridge";
 };
 
 // Starts the services, replays the dataset, writes RUN/ (run.json, trajectories, timing, registrations, logs).

@@ -2,6 +2,7 @@
 
 #include "run_security.hpp"
 #include "twinslam/core/error.hpp"
+#include "twinslam/core/text.hpp"
 
 namespace twinslam::cli {
 
@@ -17,6 +18,24 @@ process::ProcessSpec place_service(process::ProcessSpec spec, const RunOptions& 
   spec.args.insert(spec.args.begin(), {"netns", "exec", o.edge_netns, exe.string()});
   spec.exec = "ip";
   return spec;
+}
+
+std::set<std::string> restart_set(const RunOptions& o) {
+  std::set<std::string> services;
+  if (o.restart == "none") return services;
+  for (const auto name : split(o.restart, ',')) {
+    const std::string s(name);
+    if (s != "tracking" && s != "estimator" && s != "tiles" && s != "registration" && s != "bridge") {
+      throw UsageError("--restart: '" + s + "' is not a service of the run (tracking, estimator, tiles, registration, "
+                       "bridge, or none)");
+    }
+    if ((s == "tracking" || s == "estimator") && !o.realtime) {
+      throw UsageError("--restart " + s + " needs --realtime: in lockstep replay ingest waits for " + s +
+                       "'s acknowledgement of every frame");
+    }
+    services.insert(s);
+  }
+  return services;
 }
 
 }  // namespace twinslam::cli

@@ -117,6 +117,24 @@ std::optional<std::int64_t> RunRecord::first_estimate_stamp_ns() const {
   return std::nullopt;
 }
 
+std::vector<std::pair<std::int64_t, std::int64_t>> RunRecord::out_of_world_after_alignment() const {
+  std::lock_guard lock(mutex_);
+  std::vector<std::pair<std::int64_t, std::int64_t>> stretches;
+  bool seen_world = false, in_stretch = false;
+  for (const auto& [o, _] : odometry_) {
+    const bool in_world = o.estimated && o.aligned;
+    seen_world = seen_world || in_world;
+    if (!seen_world || in_world) {
+      in_stretch = false;
+      continue;
+    }
+    if (!in_stretch) stretches.emplace_back(o.stamp_ns, o.stamp_ns);
+    stretches.back().second = o.stamp_ns;
+    in_stretch = true;
+  }
+  return stretches;
+}
+
 std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path& dir) const {
   std::lock_guard lock(mutex_);
   std::vector<std::filesystem::path> written;

@@ -87,6 +87,9 @@ class RunRecord {
   // Stamp of the first pose in W (ODOM_ALIGNED) and of the first estimated pose, if any.
   std::optional<std::int64_t> first_aligned_stamp_ns() const;
   std::optional<std::int64_t> first_estimate_stamp_ns() const;
+  // After the first pose in W: the stamps [first, last] of each stretch of poses that were not in W (an estimator that
+  // restarted or re-initialized is in its new L, or has no estimate, until it aligns again).
+  std::vector<std::pair<std::int64_t, std::int64_t>> out_of_world_after_alignment() const;
   // Writes the files into `dir` (trajectories only when there is odometry, landmarks.csv only with landmarks in W).
   // Returns the files written.
   std::vector<std::filesystem::path> write(const std::filesystem::path& dir) const;
