@@ -12,24 +12,15 @@ die() { echo "link-down: $*" >&2; exit 2; }
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 bin=${TWINSLAM_BUILD_DIR:-$root/build}/bin
 [[ -x $bin/twinslam ]] || die "$bin/twinslam not built (bash scripts/test.sh builds it)"
-dataset=${1:-$root/runs/fault-link-flight}
 at=${2:-45}; for_s=${3:-30}
-if [[ -z ${1:-} && ! -d $dataset/mav0 ]]; then
-  "$bin/twinslam" sim --scenario "$root/deploy/scenarios/edge-faults.yaml" --out "$dataset" --features --quiet
-fi
-[[ -d $dataset/mav0 ]] || die "$dataset: not a dataset (no mav0/)"
-features=()
-[[ -f $dataset/mav0/cam0/features.csv ]] && features=(--features)
-
-source "$root/scripts/faults/report.sh"
+source "$root/scripts/faults/common.sh"
+fault_flight "${1:-}"
 
 out=$root/runs/fault-link
 rm -rf "$out"; mkdir -p "$out"
-bash "$root/scripts/two-hosts.sh" "$dataset" "$out/undisturbed" --realtime "${features[@]}" > "$out/undisturbed.log" 2>&1 ||
-  die "the undisturbed run failed ($out/undisturbed.log)"
+two_hosts undisturbed "$out" || die "the undisturbed run failed ($out/undisturbed.log)"
 status=0
-bash "$root/scripts/two-hosts.sh" "$dataset" "$out/link-down" --link-down "$at" "$for_s" --realtime "${features[@]}" \
-  > "$out/link-down.log" 2>&1 || status=$?
+two_hosts link-down "$out" --link-down "$at" "$for_s" || status=$?
 echo "fault: the drone-edge link down ${at} s into the run for ${for_s} s (run exit $status; $out)"
 report undisturbed "$out/undisturbed" "$out/undisturbed.log"
 report link-down "$out/link-down" "$out/link-down.log"

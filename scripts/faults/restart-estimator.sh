@@ -2,9 +2,10 @@
 # Fault (issue 14): the drone's estimator is killed (SIGKILL) mid-flight and restarted by `twinslam run --restart
 # estimator` (realtime replay: in lockstep ingest would wait for the dead estimator). The new estimator starts from
 # nothing: it initializes in flight, aligns to W from GNSS again, and registration and tiles must serve it again (the
-# same vehicle_id). The same flight runs undisturbed first. For both it ends with report.sh's line (the fault: from the
-# kill to the new process; the largest gap between poses; the first registration accepted after it; ATE in W over
-# the poses in W: run.json out_of_world_ns lists the stretch the new estimator spent in its own L) and the restarts.
+# same vehicle_id). The same flight runs undisturbed first. For both it ends with common.sh's report line (the
+# fault: from the kill to the new process; the largest gap between poses; the first registration accepted after it;
+# ATE in W over the poses in W: run.json out_of_world_ns lists the stretch the new estimator spent in its own L) and
+# the restarts.
 # Usage: bash scripts/faults/restart-estimator.sh [DATASET] [AT_S]
 #   DATASET: a simulated dataset with ground truth (default: runs/fault-link-flight, simulated once from
 #            deploy/scenarios/edge-faults.yaml: tiny's city, 100 s); AT_S: seconds into the replay (default 45)
@@ -13,17 +14,10 @@ die() { echo "restart-estimator: $*" >&2; exit 2; }
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 bin=${TWINSLAM_BUILD_DIR:-$root/build}/bin
 [[ -x $bin/twinslam ]] || die "$bin/twinslam not built (bash scripts/test.sh builds it)"
-dataset=${1:-$root/runs/fault-link-flight}
 at=${2:-45}
 [[ $at =~ ^[0-9]+([.][0-9]+)?$ ]] || die "AT_S: seconds, not '$at'"
-if [[ -z ${1:-} && ! -d $dataset/mav0 ]]; then
-  "$bin/twinslam" sim --scenario "$root/deploy/scenarios/edge-faults.yaml" --out "$dataset" --features --quiet
-fi
-[[ -d $dataset/mav0 ]] || die "$dataset: not a dataset (no mav0/)"
-features=()
-[[ -f $dataset/mav0/cam0/features.csv ]] && features=(--features)
-
-source "$root/scripts/faults/report.sh"
+source "$root/scripts/faults/common.sh"
+fault_flight "${1:-}"
 now() { date +%T.%N | cut -c1-12; }
 
 out=$root/runs/fault-estimator
@@ -39,7 +33,10 @@ for _ in $(seq 1 600); do
   grep -qs 'replay starts' "$out/restarted/run/logs/ingest.log" && break
   sleep 0.1
 done
-grep -qs 'replay starts' "$out/restarted/run/logs/ingest.log" || { wait "$run_pid" || true; die "the replay never started"; }
+if ! grep -qs 'replay starts' "$out/restarted/run/logs/ingest.log"; then
+  wait "$run_pid" || true
+  die "the replay never started"
+fi
 sleep "$at"
 pid=$(pgrep -P "$run_pid" -f twinslam-estimator || true)
 [[ -n $pid ]] || { wait "$run_pid" || true; die "no estimator to kill ${at} s into the replay"; }
@@ -60,8 +57,9 @@ report undisturbed "$out/undisturbed" "$out/undisturbed.log"
 report restarted "$out/restarted" "$out/fault.log"
 python3 -c 'import json, sys
 d = json.load(open(sys.argv[1]))
+since_first = lambda t: (t - d["aligned_from_stamp_ns"]) / 1e9 + d["aligned_after_s"]
 print("restarted: status %s, restarts %s, out of W after the alignment %s" % (d["status"],
       [(r["service"], r["ended"], round(r["at_s"], 1)) for r in d["restarts"]],
-      ["%.1f-%.1f s" % ((a - d["aligned_from_stamp_ns"]) / 1e9 + d["aligned_after_s"], (b - d["aligned_from_stamp_ns"]) / 1e9 + d["aligned_after_s"]) for a, b in d["out_of_world_ns"]]))' \
+      ["%.1f-%.1f s" % (since_first(a), since_first(b)) for a, b in d["out_of_world_ns"]]))' \
   "$out/restarted/run/run.json"
 exit "$status"

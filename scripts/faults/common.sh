@@ -1,5 +1,25 @@
-# Sourced by the fault scripts (link-down.sh, loss-delay.sh, restart-estimator.sh): one line per run (OUT/run) saying
-# what the drone flew and what the edge gave it. Needs $bin (the executables) and $dataset (with ground truth) set.
+# Sourced by the fault scripts (link-down.sh, loss-delay.sh, restart-estimator.sh): their flight, their undisturbed
+# two-host run, and one line per run (OUT/run) saying what the drone flew and what the edge gave it. Needs $root (the
+# repository), $bin (the executables) and a die function.
+
+# fault_flight [DATASET]: sets $dataset (default runs/fault-link-flight, simulated once from
+# deploy/scenarios/edge-faults.yaml: tiny's city, 100 s) and $features (--features when it has feature tracks).
+fault_flight() {
+  dataset=${1:-$root/runs/fault-link-flight}
+  if [[ -z ${1:-} && ! -d $dataset/mav0 ]]; then
+    "$bin/twinslam" sim --scenario "$root/deploy/scenarios/edge-faults.yaml" --out "$dataset" --features --quiet
+  fi
+  [[ -d $dataset/mav0 ]] || die "$dataset: not a dataset (no mav0/)"
+  features=()
+  if [[ -f $dataset/mav0/cam0/features.csv ]]; then features=(--features); fi
+}
+
+# two_hosts NAME OUT [OPTIONS...]: a realtime two-host run of $dataset into OUT/NAME (log OUT/NAME.log).
+two_hosts() {
+  local name=$1 out=$2
+  shift 2
+  bash "$root/scripts/two-hosts.sh" "$dataset" "$out/$name" "$@" --realtime "${features[@]}" > "$out/$name.log" 2>&1
+}
 seconds_of_day() { awk -F'[:.]' '{ printf "%.3f", $1 * 3600 + $2 * 60 + $3 + ("0." $4) }' <<< "$1"; }
 
 # report NAME OUT LOG: the poses out of the camera frames and the largest gap between them, the outage (from LOG's
