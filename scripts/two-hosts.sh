@@ -12,7 +12,9 @@
 # DELAY_MS; the kernel here has no netem qdisc, so the link runs through a third namespace that routes it through
 # twinslam-netem (a userspace netem between two TUN devices; its counts are printed at the end).
 # OUT/run is the `twinslam run DATASET --mode vio-twin` folder (run.json lists edge_netns), OUT/qos.xml the profiles
-# both sides used, OUT/edge-memory.csv the edge processes' resident memory once a second. With `--secure` among the run options the link runs under DDS-Security. Prints the bytes that crossed the link and the run's line. TWINSLAM_BIN: the executables' folder.
+# both sides used, OUT/edge-memory.csv the edge processes' resident memory once a second. With `--secure` among the
+# run options the link runs under DDS-Security. Prints the bytes that crossed the link and the run's line.
+# TWINSLAM_BIN: the executables' folder.
 set -euo pipefail
 die() { echo "two-hosts.sh: $*" >&2; exit 2; }
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -130,18 +132,25 @@ if [[ $discovery == server ]]; then
 fi
 
 echo "two-hosts.sh: drone $drone ($drone_ip), edge $edge ($edge_ip), discovery: $discovery${loss:+, link: $loss % loss and $delay ms delay each way (twinslam-netem in $middle)}"
-link() { ip -n "$drone" link set "vd$$" "$1" && ip -n "$edge" link set "ve$$" "$1"; }
+# With --netem the router's ends go down: downing the drone's or edge's own end would delete its default route via
+# the router, which `link set up` does not bring back.
+if [[ -z $loss ]]; then
+  link() { ip -n "$drone" link set "vd$$" "$1" && ip -n "$edge" link set "ve$$" "$1"; }
+else
+  link() { ip -n "$middle" link set "ld$$" "$1" && ip -n "$middle" link set "le$$" "$1"; }
+fi
 if [[ -n $down_at ]]; then
   ( sleep "$down_at"; link down; echo "two-hosts.sh: link down at $(date +%T.%N | cut -c1-12)"
     sleep "$down_for"; link up; echo "two-hosts.sh: link up at $(date +%T.%N | cut -c1-12)" ) &
   fault_pid=$!
 fi
-# The edge's memory, once a second (OUT/edge-memory.csv: UTC time of day in seconds, process, pid, RSS in MB): the
-# registration service must not grow while the drone is unreachable (issue 14).
+# The edge's memory, once a second (OUT/edge-memory.csv: local time of day in seconds, the clock of the logs and of
+# the link down/up lines; process, pid, RSS in MB): registration must not grow while the drone is unreachable.
 (
   echo "time_of_day_s,process,pid,rss_mb"
   while sleep 1; do
-    t=$(( $(date -u +%s) % 86400 ))
+    IFS=: read -r h m sec < <(date +%H:%M:%S)
+    t=$(( 10#$h * 3600 + 10#$m * 60 + 10#$sec ))
     for p in $(ip netns pids "$edge" 2>/dev/null); do
       name=$(tr '\0' '\n' < "/proc/$p/cmdline" 2>/dev/null | head -n1) || continue
       rss=$(awk '/^VmRSS:/ { printf "%.1f", $2 / 1024 }' "/proc/$p/status" 2>/dev/null) || continue

@@ -243,7 +243,8 @@ int run_pipeline(const RunOptions& o) {
     }
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
     process::ProcessSpec spec = place_service({s, "twinslam-" + s, args, env, {}, false}, o, security);
-    // The edge services come back after a crash (issue 14): the estimator flies on without them meanwhile.
+    // --restart: the services that come back after a crash (by default the edge's: the estimator flies on without
+    // them meanwhile, issue 14).
     spec.restart_on_failure = restartable.contains(s);
     supervisor.start(spec);
   }

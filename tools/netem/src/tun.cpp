@@ -33,10 +33,12 @@ Tun::~Tun() {
 }
 
 bool Tun::read(std::vector<std::uint8_t>& packet) {
-  packet.resize(65536);
-  const ssize_t n = ::read(fd_, packet.data(), packet.size());
+  // Read into one reusable buffer and copy out exactly the packet: a packet vector resized down from 64 KiB would keep
+  // that capacity while it waits in the delay line, which counts only its size against the queue limit.
+  buffer_.resize(65536);
+  const ssize_t n = ::read(fd_, buffer_.data(), buffer_.size());
   if (n <= 0) return false;
-  packet.resize(static_cast<std::size_t>(n));
+  packet.assign(buffer_.begin(), buffer_.begin() + n);
   return true;
 }
 

@@ -25,6 +25,7 @@ class Tun {
  private:
   std::string name_;
   int fd_ = -1;
+  std::vector<std::uint8_t> buffer_;  // one read's room (the largest IP packet)
 };
 
 }  // namespace twinslam::netem
