@@ -1,4 +1,5 @@
 // Acceptance (issue 2): each bad input ends with exit code 2 and a one-line reason naming the file and the problem.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -123,6 +124,28 @@ TEST(CliErrors, RunRefusesARestartItCannotHonour) {
                    {"--restart estimator needs --realtime", "acknowledgement"});
   expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--restart", "ingest"}),
                    {"--restart: 'ingest' is not a service of the run"});
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// --shared-edge joins an edge started outside the run: refused when the run could never meet it or be told apart
+// from the fleet's other vehicles. Refused before anything starts.
+TEST(CliErrors, RunRefusesASharedEdgeItCannotMeet) {
+  const std::string out = "/tmp/twinslam_shared_run_" + std::to_string(::getpid());
+  const std::string domain = std::to_string(test::test_domain());
+  expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--shared-edge", "--domain",
+                                      domain}),
+                   {"--shared-edge: mode 'vio' uses no edge"});
+  expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--mode", "vio-twin",
+                                      "--shared-edge", "--domain", domain, "--vehicle", "uav*"}),
+                   {"--shared-edge: the vehicle id 'uav*'", "no pattern"});
+  expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--mode", "vio-twin",
+                                      "--shared-edge", "--domain", domain, "--secure"}),
+                   {"--shared-edge with --secure is not implemented"});
+  if (std::getenv("TWINSLAM_DOMAIN") == nullptr) {
+    expect_bad_input(test::run_process({test::bin("twinslam"), "run", kEuroc, "--out", out, "--mode", "vio-twin",
+                                        "--shared-edge"}),
+                     {"--shared-edge: give the edge's DDS domain"});
+  }
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -103,6 +103,8 @@ int run_pipeline(const RunOptions& o) {
   // Refused before anything starts or is written: run.json must never name a mode that did not run.
   require_implemented_mode(o.mode);
   const std::set<std::string> restartable = restart_set(o);
+  const char* env_domain = std::getenv("TWINSLAM_DOMAIN");
+  check_shared_edge(o, uses_twin(o.mode), o.domain >= 0 || (env_domain != nullptr && *env_domain != '\0'));
   const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
   if (o.features) ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
   check_config_dir(o.config_dir);
@@ -129,7 +131,7 @@ int run_pipeline(const RunOptions& o) {
       throw UsageError("mode '" + o.mode + "': the dataset has no GNSS (mav0/gnss0) for the initial alignment; give "
                        "--initial-pose \"E N U YAW_DEG\"");
     }
-    twin_store = dataset_twin_store(*geo, o.quiet);
+    if (!o.shared_edge) twin_store = dataset_twin_store(*geo, o.quiet);  // else the edge's tiles serve their own
   }
   const fs::path out = o.out;
   fs::create_directories(out);
@@ -142,6 +144,7 @@ int run_pipeline(const RunOptions& o) {
   cfg.service = "run";
   cfg.vehicle_id = o.vehicle;
   cfg.domain = domain;
+  if (o.shared_edge) cfg.partition = o.vehicle;  // this vehicle's topics and the edge's, no other vehicle's
   if (o.secure) {
     cfg.participant_profile = secure_profile("run");
     cfg.security_dir = security.string();
@@ -213,8 +216,10 @@ int run_pipeline(const RunOptions& o) {
   }
   if (o.bridge_port >= 0) services.push_back("bridge");
   process::Supervisor supervisor({out / "logs"});
-  const std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", std::to_string(domain)}};
+  std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", std::to_string(domain)}};
+  if (o.shared_edge) env["TWINSLAM_PARTITION"] = o.vehicle;
   for (const auto& s : services) {
+    if (!started_by_run(o, s)) continue;  // the shared edge's: awaited below like the run's own
     std::vector<std::string> args{"--vehicle", o.vehicle, replay};
     const std::string camera = (dataset.root / "mav0/cam0/sensor.yaml").string();
     if (s == "tracking") args.insert(args.end(), {"--camera", camera});
@@ -254,7 +259,11 @@ int run_pipeline(const RunOptions& o) {
     if (supervisor.watch(std::chrono::milliseconds(20)) != process::Supervisor::Event::Timeout) {
       throw_startup_failure(supervisor.stop_all(), out / "logs");  // exit 2 with its line if its input was bad
     }
-    if (std::chrono::steady_clock::now() > ready_deadline) throw std::runtime_error("services not ready in time");
+    if (std::chrono::steady_clock::now() > ready_deadline) {
+      throw std::runtime_error(o.shared_edge ? "services not ready in time (is the shared edge's tiles and registration "
+                                               "running in domain " + std::to_string(domain) + ", partitions 'edge,*'?)"
+                                             : "services not ready in time");
+    }
   }
   // Readers ingest must see before its first sample: every subscriber of each stream plus this recorder.
   // Camera frames (images, or feature frames with --features) go to tracking or to the estimator.
@@ -310,6 +319,7 @@ int run_pipeline(const RunOptions& o) {
                      {"domain", domain},
                      {"secure", o.secure},
                      {"edge_netns", o.edge_netns.empty() ? nlohmann::json() : nlohmann::json(o.edge_netns)},
+                     {"shared_edge", o.shared_edge},
                      {"messages", messages},
                      {"services", svc},
                      {"poses", record.odometry_count()}};
@@ -349,7 +359,7 @@ int run_pipeline(const RunOptions& o) {
     run["origin"] = {{"lat_deg", geo->origin.lat_deg}, {"lon_deg", geo->origin.lon_deg}, {"alt_m", geo->origin.alt_m}};
   }
   if (uses_twin(o.mode)) {
-    run["twin"] = {{"store", twin_store.string()},
+    run["twin"] = {{"store", o.shared_edge ? nlohmann::json() : nlohmann::json(twin_store.string())},
                    {"weights", o.weights},
                    {"initial_alignment", o.initial_pose.empty() ? std::string("gnss") : "pose " + o.initial_pose}};
   }
@@ -396,6 +406,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--security-dir", o->security_dir,
                   "With --secure: the CA, identities and permissions (default: $TWINSLAM_SECURITY_DIR, else "
                   "~/.local/state/twinslam/pki)");
+  cmd->add_flag("--shared-edge", o->shared_edge,
+                "Twin modes: tiles and registration of a fleet's edge already run in --domain (scripts/fleet.sh); "
+                "start neither, talk in the DDS partition named after --vehicle");
   cmd->add_option("--edge-netns", o->edge_netns,
                   "Run tiles and registration in this network namespace (`ip netns exec`; scripts/two-hosts.sh)");
   cmd->add_option("--restart", o->restart,

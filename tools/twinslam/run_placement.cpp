@@ -38,4 +38,23 @@ std::set<std::string> restart_set(const RunOptions& o) {
   return services;
 }
 
+void check_shared_edge(const RunOptions& o, bool twin_mode, bool domain_given) {
+  if (!o.shared_edge) return;
+  if (!twin_mode) throw UsageError("--shared-edge: mode '" + o.mode + "' uses no edge (a twin mode does)");
+  if (!domain_given) {
+    throw UsageError("--shared-edge: give the edge's DDS domain (--domain or TWINSLAM_DOMAIN); a private one would "
+                     "never meet it");
+  }
+  if (o.vehicle.empty() || o.vehicle.find_first_of("*?[],") != std::string::npos) {
+    throw UsageError("--shared-edge: the vehicle id '" + o.vehicle + "' names this vehicle's DDS partition: give a "
+                     "plain name, not empty, no pattern or comma");
+  }
+  if (!o.edge_netns.empty()) throw UsageError("--shared-edge: the edge is not the run's, --edge-netns cannot place it");
+  if (o.secure) throw UsageError("--shared-edge with --secure is not implemented (the permissions name no partitions)");
+}
+
+bool started_by_run(const RunOptions& o, const std::string& s) {
+  return !(o.shared_edge && (s == "tiles" || s == "registration"));
+}
+
 }  // namespace twinslam::cli

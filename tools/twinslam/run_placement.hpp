@@ -20,4 +20,13 @@ process::ProcessSpec place_service(process::ProcessSpec spec, const RunOptions& 
 // estimator or tracking without --realtime (lockstep ingest would wait for a dead stage's acknowledgement).
 std::set<std::string> restart_set(const RunOptions& o);
 
+// --shared-edge (a fleet on one edge, scripts/fleet.sh): tiles and registration already run in `domain`, started
+// outside the run in the edge's partitions; the run starts neither and puts its own processes in the DDS partition
+// named after the vehicle. UsageError when it cannot work that way: not a twin mode, no domain given (a private one
+// would never meet the edge), a vehicle id that is empty or a pattern, or with --edge-netns / --secure.
+void check_shared_edge(const RunOptions& o, bool twin_mode, bool domain_given);
+
+// Whether the run starts service `s` itself (not the shared edge's tiles or registration).
+bool started_by_run(const RunOptions& o, const std::string& s);
+
 }  // namespace twinslam::cli

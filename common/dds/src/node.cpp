@@ -9,8 +9,10 @@
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/publisher/qos/PublisherQos.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/subscriber/qos/SubscriberQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 
@@ -45,6 +47,27 @@ int resolve_domain(int configured) {
   // Fast DDS maps the domain to UDP ports 7400 + 250 * domain; above 232 the ports overflow 65535.
   if (domain < 0 || domain > 232) throw UsageError("DDS domain " + std::to_string(domain) + " is outside 0..232");
   return domain;
+}
+
+std::vector<std::string> resolve_partitions(const std::string& configured) {
+  std::string text = configured;
+  const char* source = "partition";
+  if (text.empty()) {
+    const char* env = std::getenv("TWINSLAM_PARTITION");
+    if (env == nullptr || *env == '\0') return {};
+    text = env;
+    source = "TWINSLAM_PARTITION";
+  }
+  std::vector<std::string> names;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', begin);
+    std::string name = text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
+    if (name.empty()) throw UsageError(std::string(source) + " '" + text + "': an empty partition name in the list");
+    names.push_back(std::move(name));
+    if (comma == std::string::npos) return names;
+    begin = comma + 1;
+  }
 }
 
 namespace {
@@ -84,6 +107,7 @@ Node::Node(NodeConfig config) : config_(std::move(config)) {
   const std::string qos_file = resolve_qos_file(config_.qos_file);
   load_profiles_once(qos_file);
   const int domain = resolve_domain(config_.domain);
+  const std::vector<std::string> partitions = resolve_partitions(config_.partition);  // refused before any entity
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   fdds::DomainParticipantQos qos;
   if (factory->get_participant_qos_from_profile(config_.participant_profile, qos) != ReturnCode_t::RETCODE_OK) {
@@ -100,8 +124,15 @@ Node::Node(NodeConfig config) : config_(std::move(config)) {
                                              "' (see the Fast DDS error above)"
                                        : std::string()));
   }
-  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
-  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  // Partitions are a publisher / subscriber QoS: one of each per process, so every topic of it shares them.
+  fdds::PublisherQos pub_qos = fdds::PUBLISHER_QOS_DEFAULT;
+  fdds::SubscriberQos sub_qos = fdds::SUBSCRIBER_QOS_DEFAULT;
+  for (const std::string& name : partitions) {
+    pub_qos.partition().push_back(name.c_str());
+    sub_qos.partition().push_back(name.c_str());
+  }
+  publisher_ = participant_->create_publisher(pub_qos);
+  subscriber_ = participant_->create_subscriber(sub_qos);
   if (publisher_ == nullptr || subscriber_ == nullptr) throw std::runtime_error("cannot create DDS publisher/subscriber");
 }
 

@@ -13,6 +13,8 @@ void add_service_options(CLI::App& app, ServiceOptions& options) {
   app.add_option("--vehicle", options.node.vehicle_id, "Vehicle id (the @key of per-vehicle topics)")
       ->capture_default_str();
   app.add_option("--domain", options.node.domain, "DDS domain (default: $TWINSLAM_DOMAIN or 0)");
+  app.add_option("--partition", options.node.partition,
+                 "DDS partitions, comma-separated, patterns allowed (default: $TWINSLAM_PARTITION, else none)");
   app.add_option("--qos", options.node.qos_file, "Fast DDS XML profile file (default: $TWINSLAM_QOS_FILE or built-in)");
   app.add_option("--profile", options.node.participant_profile, "Participant profile in the QoS file")
       ->capture_default_str();

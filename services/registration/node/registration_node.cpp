@@ -1,5 +1,7 @@
 #include "registration_node.hpp"
 
+#include <spdlog/spdlog.h>
+
 namespace twinslam::registration {
 
 RegistrationNode::RegistrationNode(dds::Node& node, dds::Counters& counters, const RegistrationNodeOptions& options)
@@ -10,6 +12,7 @@ RegistrationNode::RegistrationNode(dds::Node& node, dds::Counters& counters, con
   node.subscribe<msg::LocalMap>(dds::topics::kLocalMap, [this](const msg::LocalMap& m) {
     counters_.add("local_maps_in");
     std::lock_guard lock(mutex_);
+    ++local_maps_of_[m.vehicle_id()];
     auto& slot = pending_[m.vehicle_id()];
     if (slot.map) counters_.add("skipped");  // the previous cloud of this vehicle was never served: newest wins
     slot = {std::make_shared<const msg::LocalMap>(m), std::chrono::steady_clock::now()};
@@ -30,6 +33,8 @@ RegistrationNode::~RegistrationNode() {
   }
   wake_.notify_one();
   worker_.join();
+  // Which vehicles this instance served: with a fleet split over instances by DDS partition, each names only its own.
+  for (const auto& [vehicle, n] : local_maps_of_) spdlog::info("served vehicle '{}': {} local maps", vehicle, n);
 }
 
 void RegistrationNode::run() {

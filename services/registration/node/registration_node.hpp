@@ -44,6 +44,7 @@ class RegistrationNode {
   std::map<std::string, Pending> pending_;               // newest LocalMap per vehicle
   std::deque<std::shared_ptr<const msg::MapTile>> tiles_in_;
   std::string last_served_;                              // round robin over vehicles
+  std::map<std::string, std::size_t> local_maps_of_;     // LocalMaps received per vehicle (logged at the end)
   bool stop_ = false;
   std::thread worker_;  // last
 };

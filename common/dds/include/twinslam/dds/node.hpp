@@ -37,11 +37,18 @@ struct NodeConfig {
   std::string qos_file;                                 // empty: $TWINSLAM_QOS_FILE, else the built-in default
   std::string security_dir;                             // secured profiles' files; empty: $TWINSLAM_SECURITY_DIR
   Replay replay = Replay::Lockstep;                     // QoS of sensor writers
+  // DDS partitions of every writer and reader of this process, comma-separated, fnmatch patterns allowed ("uav[0-4]",
+  // "*"); empty: $TWINSLAM_PARTITION, else the default partition. A fleet (issue 14) puts each vehicle's processes in
+  // a partition of their own so its sensors never reach another vehicle's estimator, and the edge in "edge,*".
+  std::string partition;
 };
 
 // Resolves the effective QoS file and domain as a Node would; exposed for tools and error messages.
 std::string resolve_qos_file(const std::string& configured);
 int resolve_domain(int configured);
+// The partitions a Node with `configured` joins (as NodeConfig::partition says); empty: the default partition.
+// UsageError for an empty name in the list (",uav0", "uav0,,uav1").
+std::vector<std::string> resolve_partitions(const std::string& configured);
 
 namespace detail {
 using RawWriter = eprosima::fastdds::dds::DataWriter;

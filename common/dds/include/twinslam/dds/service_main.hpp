@@ -17,7 +17,7 @@ struct ServiceOptions {
   std::string log_level = "info";
 };
 
-// Adds --vehicle --domain --qos --profile --realtime/--max --log-level to `app`.
+// Adds --vehicle --domain --partition --qos --profile --realtime/--max --log-level to `app`.
 void add_service_options(CLI::App& app, ServiceOptions& options);
 
 // Parses argv, sets up logging and SIGINT/SIGTERM handling, then runs body(options) inside guarded_main.
