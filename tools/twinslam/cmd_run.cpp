@@ -155,17 +155,25 @@ int run_pipeline(const RunOptions& o) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
   };
   MonitorHooks hooks;
-  hooks.image = [&](const msg::Image& m) { record.frame_in(m.stamp_ns(), since_ms()); };
+  // The run records its own vehicle: an edge shared by a fleet (--shared-edge) answers every vehicle in partitions
+  // this one also reads, and keyframe stamps of different vehicles can coincide.
+  const auto other = [&o](const std::string& vehicle_id) { return vehicle_id != o.vehicle; };
+  hooks.image = [&](const msg::Image& m) {
+    if (!other(m.vehicle_id())) record.frame_in(m.stamp_ns(), since_ms());
+  };
   hooks.features = [&](const msg::FeatureFrame& m) {
+    if (other(m.vehicle_id())) return;
     if (o.features) record.frame_in(m.stamp_ns(), since_ms());
     record.features(m.stamp_ns(), m.tracking_ms());
   };
   std::atomic<std::size_t> poses{0};  // frames the estimator has finished: the progress of the run
   hooks.odometry = [&](const msg::Odometry& m) {
+    if (other(m.vehicle_id())) return;
     record.odometry(to_record(m), since_ms());
     poses.fetch_add(1, std::memory_order_relaxed);
   };
   hooks.local_map = [&](const msg::LocalMap& m) {
+    if (other(m.vehicle_id())) return;
     // The estimator sends its covariance once it has a world alignment: then the keyframe pose is in W.
     std::optional<Eigen::Isometry3d> T_WB;
     std::vector<std::uint64_t> ids;
@@ -189,7 +197,9 @@ int run_pipeline(const RunOptions& o) {
     }
     record.local_map(m.keyframe_stamp_ns(), since_ms(), m.landmarks().size(), T_WB);
   };
-  hooks.registration = [&](const msg::Registration& m) { record.registration(to_record(m), since_ms()); };
+  hooks.registration = [&](const msg::Registration& m) {
+    if (!other(m.vehicle_id())) record.registration(to_record(m), since_ms());
+  };
   // Declared before the monitor: its readers (which record into it) close first.
   std::unique_ptr<McapRecorder> mcap;
   if (o.mcap) {
