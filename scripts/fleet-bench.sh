@@ -46,16 +46,18 @@ done
 
 for ((k = 0; k < largest; k++)); do
   echo "fleet-bench.sh: uav$k alone"
-  bash "$root/scripts/fleet.sh" "$out/single/uav$k" "${datasets[$k]}" -- --features > "$out/single-uav$k.txt"
+  bash "$root/scripts/fleet.sh" "$out/single/uav$k" "${datasets[$k]}" -- --features > "$out/single-uav$k.txt" ||
+    echo "fleet-bench.sh: uav$k failed alone ($out/single-uav$k.txt)"
 done
 for s in "${sizes[@]}"; do
   echo "fleet-bench.sh: a fleet of $s"
-  bash "$root/scripts/fleet.sh" "$out/fleet-$s" "${datasets[@]:0:$s}" -- --features > "$out/fleet-$s.txt"
+  bash "$root/scripts/fleet.sh" "$out/fleet-$s" "${datasets[@]:0:$s}" -- --features > "$out/fleet-$s.txt" ||
+    echo "fleet-bench.sh: a vehicle's run failed in the fleet of $s ($out/fleet-$s.txt)"
 done
 if (( largest >= 2 )); then
   echo "fleet-bench.sh: a fleet of $largest, two registration instances"
   bash "$root/scripts/fleet.sh" "$out/fleet-$largest-split" "${datasets[@]}" --split -- --features \
-    > "$out/fleet-$largest-split.txt"
+    > "$out/fleet-$largest-split.txt" || echo "fleet-bench.sh: a vehicle's run failed in the split fleet"
 fi
 
 python3 - "$out" "$largest" "${sizes[@]}" <<'EOF'
@@ -65,9 +67,9 @@ out, largest, sizes = Path(sys.argv[1]), int(sys.argv[2]), [int(s) for s in sys.
 alone = {}
 for k in range(largest):
     alone[f"uav{k}"] = json.loads((out / "single" / f"uav{k}" / "fleet.json").read_text())["vehicles"][0]["ate_w_m"]
-print("| vehicles | registration instances | latency median [ms] | latency p99 [ms] | edge CPU [% of a core] "
+print("| vehicles | registration instances | runs ok | latency median [ms] | latency p99 [ms] | edge CPU [% of a core] "
       "| edge peak RSS [MB] | worst ATE / alone | within 1.2x |")
-print("|---|---|---|---|---|---|---|---|")
+print("|---|---|---|---|---|---|---|---|---|")
 runs = [(s, f"fleet-{s}", 1) for s in sizes] + ([(largest, f"fleet-{largest}-split", 2)] if largest >= 2 else [])
 for n, name, instances in runs:
     f = json.loads((out / name / "fleet.json").read_text())
@@ -76,7 +78,8 @@ for n, name, instances in runs:
     ratios = [v["ate_w_m"] / alone[v["vehicle"]] if v["ate_w_m"] and alone[v["vehicle"]] else float("inf")
               for v in f["vehicles"]]
     within = sum(r <= 1.2 for r in ratios)
-    print(f"| {n} | {instances} | {f['latency_median_ms']:.0f} | {f['latency_p99_ms']:.0f} | {cpu:.0f} | {rss:.0f} "
+    ok = sum(v["status"] == "ok" for v in f["vehicles"])
+    print(f"| {n} | {instances} | {ok}/{n} | {f['latency_median_ms']:.0f} | {f['latency_p99_ms']:.0f} | {cpu:.0f} | {rss:.0f} "
           f"| {max(ratios):.2f} | {within}/{n} |")
     if instances == 2:
         for inst, counts in f["served"].items():
