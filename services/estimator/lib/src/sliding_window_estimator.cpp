@@ -121,34 +121,19 @@ void reset(WindowState& s) {
   s.world_aligned = false;
 }
 
-// Mean angle [px] between this frame's bearings and the rest anchor's, over common tracks. Without features the IMU
-// alone decides (0); with features but none in common (no anchor yet, or its tracks lost) stillness is not shown
-// (infinity).
+// Mean angle [px] between this frame's bearings and the previous frame's, over common tracks. Without features the
+// IMU alone decides (0); with features but none in common (first frame) stillness is not shown yet (infinity).
 double feature_motion_px(const WindowState& s, const std::vector<FeatureBearing>& features) {
   double sum = 0.0;
   int n = 0;
   for (const auto& b : features) {
-    const auto it = s.rest_anchor_bearings.find(b.id);
-    if (it == s.rest_anchor_bearings.end()) continue;
+    const auto it = s.previous_bearings.find(b.id);
+    if (it == s.previous_bearings.end()) continue;
     sum += std::atan2(b.f_C.cross(it->second).norm(), b.f_C.dot(it->second));
     ++n;
   }
   if (features.empty()) return 0.0;
   return n > 0 ? s.config.focal_px * sum / n : std::numeric_limits<double>::infinity();
-}
-
-// Visual rest: the features stayed within max_rest_feature_motion_px of where they were static_window_s ago or
-// longer. Frame to frame is not enough: in steady flight (constant velocity, distant facades) consecutive frames
-// move less than 2 px while the IMU feels only gravity, and a static initialization there takes 3 m/s for 0 and
-// diverges (issue 14: an estimator restarted in flight). Over the window the same flight moves tens of pixels.
-bool visually_still(WindowState& s, std::int64_t stamp_ns, const std::vector<FeatureBearing>& features) {
-  if (feature_motion_px(s, features) > s.config.max_rest_feature_motion_px) {
-    s.rest_anchor_bearings.clear();
-    for (const auto& b : features) s.rest_anchor_bearings[b.id] = b.f_C;
-    s.rest_anchor_ns = stamp_ns;
-    return false;
-  }
-  return s.rest_anchor_ns < 0 || 1e-9 * static_cast<double>(stamp_ns - s.rest_anchor_ns) >= s.config.static_window_s;
 }
 
 // Every parameter block Ceres would get is finite. Ceres aborts the process (a CHECK) on a non-finite one, so a window
@@ -324,7 +309,9 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
     if (s.first_frame_ns < 0) s.first_frame_ns = stamp_ns;
     std::optional<ImuState> init = s.pending_init;
     s.pending_init.reset();
-    const bool still = visually_still(s, stamp_ns, features);
+    const bool still = feature_motion_px(s, features) <= s.config.max_rest_feature_motion_px;
+    s.previous_bearings.clear();
+    for (const auto& b : features) s.previous_bearings[b.id] = b.f_C;
     StatePriorSigmas sigmas = static_init_prior_sigmas(s.config);
     if (!init && still) {
       const auto end = std::upper_bound(s.imu.begin(), s.imu.end(), stamp_ns,
@@ -351,8 +338,7 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
       e.init_timed_out = 1e-9 * static_cast<double>(stamp_ns - s.first_frame_ns) > s.config.init_timeout_s;
       return finish(e);
     }
-    s.rest_anchor_bearings.clear();
-    s.rest_anchor_ns = -1;
+    s.previous_bearings.clear();
     start_window(s, stamp_ns, *init, sigmas, features);
     FrameEstimate e = make_estimate(s, *s.frames.back(), EstimatorStatus::kTracking);
     s.local_map = LocalMapEstimate{stamp_ns, e.T_LB, e.T_WL, {}};

@@ -40,8 +40,7 @@ struct SlidingWindowConfig {
   // Initialization. A rest window of 0.5 s suffices for the simulator's ~0.8 s of rest at the start.
   double static_window_s = 0.5;        // [s]
   // The IMU rest test alone accepts gentle motion (its thresholds allow a hovering multicopter's vibration), so rest
-  // also needs the features to stand still: mean bearing change of common tracks from a frame static_window_s or
-  // more back [px] (between consecutive frames a steady flight also moves less than this).
+  // also needs the features to stand still: mean bearing change between consecutive frames of common tracks [px].
   double max_rest_feature_motion_px = 2.0;
   double init_timeout_s = 5.0;         // neither rest nor a motion initialization for this long -> reported [s]
   // In motion, the closed-form visual-inertial initialization (motion_init.hpp) starts the window instead.

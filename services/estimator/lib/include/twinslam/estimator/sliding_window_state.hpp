@@ -49,9 +49,7 @@ struct WindowState {
   bool initialized = false;
   EstimatorStatus idle_status = EstimatorStatus::kInitializing;
   std::optional<ImuState> pending_init;
-  // While initializing, the stillness check: the bearings of the frame where the current still stretch began.
-  std::unordered_map<std::int64_t, Eigen::Vector3d> rest_anchor_bearings;
-  std::int64_t rest_anchor_ns = -1;
+  std::unordered_map<std::int64_t, Eigen::Vector3d> previous_bearings;  // while initializing (stillness check)
   std::deque<MotionInitFrame> init_frames;    // while initializing: the last motion_init.window_s of frames
   std::int64_t first_frame_ns = -1;           // first frame seen since the last (re)start
   std::int64_t last_frame_ns = -1;
