@@ -97,6 +97,29 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   fs::remove_all(dir);
 }
 
+// The recorder reads LocalMaps and Registrations on separate readers: a registration can be recorded before its
+// keyframe's LocalMap (seen in a lockstep tiny run). Its row still carries the keyframe's pose.
+TEST(RunRecord, ARegistrationRecordedBeforeItsLocalMapStillGetsTheKeyframePose) {
+  cli::RunRecord rec;
+  cli::RegistrationRecord r;
+  r.stamp_ns = 1'100'000'000LL;
+  r.accepted = true;
+  rec.registration(r, 500.0);
+  rec.local_map(r.stamp_ns, 501.0, 40, Eigen::Isometry3d(Eigen::Translation3d(4, 5, 6)));
+  const fs::path dir = fs::temp_directory_path() / ("twinslam_runrec_late_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  rec.write(dir);
+  std::size_t rows = 0;
+  read_csv(dir / "registrations.csv", 28, [&](const CsvRow& row) {
+    if (row.line == 1) return;
+    ++rows;
+    EXPECT_DOUBLE_EQ(parse_double(dir / "registrations.csv", row, 21, "kf_x_m"), 4.0);
+    EXPECT_DOUBLE_EQ(parse_double(dir / "registrations.csv", row, 23, "kf_z_m"), 6.0);
+  });
+  EXPECT_EQ(rows, 1u);
+  fs::remove_all(dir);
+}
+
 TEST(RunRecord, WithoutOdometryWritesNoTrajectory) {
   cli::RunRecord rec;
   const fs::path dir = fs::temp_directory_path() / ("twinslam_runrec_empty_" + std::to_string(::getpid()));

@@ -149,6 +149,30 @@ TEST(CliErrors, RunRefusesASharedEdgeItCannotMeet) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// --external leaves services to containers or other hosts (docker/demo.sh): refused for a service the run does not
+// have, and when it could never meet them. Refused before anything starts.
+TEST(CliErrors, RunRefusesExternalServicesItCannotUseOrMeet) {
+  const std::string out = "/tmp/twinslam_external_run_" + std::to_string(::getpid());
+  const std::string domain = std::to_string(test::test_domain());
+  const auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args{test::bin("twinslam"), "run", kEuroc, "--out", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return test::run_process(args);
+  };
+  expect_bad_input(run({"--external", "ingest", "--domain", domain}),
+                   {"--external: 'ingest' is not a service the run can leave to others"});
+  expect_bad_input(run({"--external", "tracking", "--features", "--domain", domain}),
+                   {"--external tracking: with --features the run has no tracking"});
+  expect_bad_input(run({"--external", "registration", "--domain", domain}),
+                   {"--external registration: mode 'vio' uses no registration"});
+  expect_bad_input(run({"--external", "tiles", "--mode", "vio-twin", "--shared-edge", "--domain", domain}),
+                   {"--external and --shared-edge"});
+  if (std::getenv("TWINSLAM_DOMAIN") == nullptr) {
+    expect_bad_input(run({"--external", "estimator"}), {"--external: give the DDS domain"});
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(CliErrors, RunWithABadConfigDirStopsWithTheServicesLine) {
   const std::string out = "/tmp/twinslam_cfg_run_" + std::to_string(::getpid());
   const std::string domain = std::to_string(test::test_domain());

@@ -125,3 +125,60 @@ TEST(Run, AKilledRegistrationServiceIsRestartedAndTheRunEndsOk) {
   EXPECT_GT(json["messages"]["twinslam/v3/registration"], 0);
   fs::remove_all(base);
 }
+
+// Issue 14 (containers, docker/demo.sh): `twinslam run --external` leaves services to others and only waits for them.
+// Started outside with the arguments the run would give them, they produce in lockstep the very trajectory the run
+// makes when it starts them itself.
+TEST(Run, ServicesStartedOutsideTheRunGiveTheSameLockstepTrajectory) {
+  const fs::path base = fs::temp_directory_path() / ("twinslam_run_external_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  const fs::path tiny = base / "tiny";
+  const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--out", tiny.string(),
+                                      "--features", "--quiet"}, {}, std::chrono::seconds(120));
+  ASSERT_EQ(sim.exit_code, 0) << sim.out << sim.err;
+  std::ifstream yaml(tiny / "dataset.yaml");
+  std::string line, origin;
+  while (std::getline(yaml, line) && origin.empty()) {
+    if (line.rfind("origin:", 0) != 0) continue;
+    for (const char* key : {"lat:", "lon:", "alt:"}) {
+      const auto at = line.find(key) + 4;
+      origin += (origin.empty() ? "" : ",") + line.substr(at, line.find_first_of(",}", at) - at);
+    }
+  }
+  ASSERT_FALSE(origin.empty());
+  const auto store = test::run_process({test::bin("twinslam"), "twin", "build", (tiny / "twin/twin.ply").string(),
+                                        "--origin", origin, "--out", (base / "store").string()});
+  ASSERT_EQ(store.exit_code, 0) << store.err;
+  const std::string domain = std::to_string(test::test_domain());
+  const std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", domain}};
+  const std::string cam = (tiny / "mav0/cam0/sensor.yaml").string(), imu = (tiny / "mav0/imu0/sensor.yaml").string();
+  test::Background estimator({test::bin("twinslam-estimator"), "--vehicle", "uav0", "--max", "--camera", cam, "--imu",
+                              imu, "--origin", origin, "--fuse-registrations", "--await-registration", "--align-gnss"},
+                             env);
+  test::Background tiles({test::bin("twinslam-tiles"), "--vehicle", "uav0", "--max", "--twin", (base / "store").string()},
+                         env);
+  test::Background registration({test::bin("twinslam-registration"), "--vehicle", "uav0", "--max"}, env);
+  const auto outside = test::run_process({test::bin("twinslam"), "run", tiny.string(), "--mode", "vio-twin",
+                                          "--features", "--no-progress", "--external", "estimator,tiles,registration",
+                                          "--domain", domain, "--out", (base / "outside").string()},
+                                         {}, std::chrono::seconds(180));
+  ASSERT_EQ(outside.exit_code, 0) << outside.err;
+  for (auto* p : {&estimator, &tiles, &registration}) p->signal(SIGINT);
+  const auto own = test::run_process({test::bin("twinslam"), "run", tiny.string(), "--mode", "vio-twin", "--features",
+                                      "--no-progress", "--domain", domain, "--out", (base / "own").string()},
+                                     {}, std::chrono::seconds(180));
+  ASSERT_EQ(own.exit_code, 0) << own.err;
+  const auto read = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::string trajectory = read(base / "outside/trajectory.tum");
+  EXPECT_GT(std::count(trajectory.begin(), trajectory.end(), '\n'), 500);
+  EXPECT_EQ(trajectory, read(base / "own/trajectory.tum"));
+  const auto json = nlohmann::json::parse(read(base / "outside/run.json"));
+  EXPECT_EQ(json["status"], "ok");
+  EXPECT_EQ(json["external"], nlohmann::json({"estimator", "registration", "tiles"}));
+  EXPECT_FALSE(json["services"].contains("estimator")) << json["services"].dump();  // the run started only ingest
+  EXPECT_GT(json["messages"]["twinslam/v3/registration"], 0);
+  fs::remove_all(base);
+}

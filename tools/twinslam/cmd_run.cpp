@@ -23,7 +23,9 @@
 #include "run_config_dir.hpp"
 #include "run_pipeline.hpp"
 #include "twinslam/dds/convert.hpp"
+#include "run_hooks.hpp"
 #include "run_record.hpp"
+#include "run_services.hpp"
 #include "run_placement.hpp"
 #include "run_security.hpp"
 #include "twin_changes_report.hpp"
@@ -40,46 +42,6 @@ namespace twinslam::cli {
 namespace fs = std::filesystem;
 
 namespace {
-bool uses_twin(const std::string& mode) { return mode.rfind("vio-twin", 0) == 0; }
-// Modes whose estimator fuses GNSS fixes as window terms (tightly coupled).
-bool fuses_gnss(const std::string& mode) { return mode == "vio-gnss" || mode == "vio-twin-gnss"; }
-// The loosely coupled mode: a pose graph apart from the VIO (loose_gnss_fusion.hpp).
-bool fuses_gnss_loose(const std::string& mode) { return mode == "vio-gnss-loose"; }
-bool needs_gnss(const std::string& mode) { return fuses_gnss(mode) || fuses_gnss_loose(mode); }
-
-// RunRecord::odometry_faults() names the bits in this order.
-static_assert(msg::ODOM_FAULT_IMU_REJECTED == 1 && msg::ODOM_FAULT_IMU_GAP == 2 && msg::ODOM_FAULT_FEW_FEATURES == 4 &&
-              msg::ODOM_FAULT_FRAME_GAP == 8 && msg::ODOM_FAULT_GNSS_REJECTED == 16 &&
-              msg::ODOM_FAULT_REGISTRATION_REFUSED == 32);
-
-OdometryRecord to_record(const msg::Odometry& m) {
-  const bool estimated = m.status() == msg::ODOM_TRACKING || m.status() == msg::ODOM_ALIGNED;
-  return {m.stamp_ns(), dds::from_msg(m.T_WB()), dds::from_msg(m.T_LB()), m.estimator_ms(), estimated,
-          m.status() == msg::ODOM_ALIGNED, m.faults()};
-}
-
-RegistrationRecord to_record(const msg::Registration& m) {
-  RegistrationRecord r;
-  r.stamp_ns = m.keyframe_stamp_ns();
-  r.accepted = m.status() == msg::REG_ACCEPTED;
-  r.reason = m.reason().empty() ? (r.accepted ? "accepted" : "rejected") : m.reason();
-  r.rmse_m = m.rmse_m();
-  r.inliers = m.inliers();
-  r.fitness = m.fitness();
-  r.time_ms = m.compute_ms();
-  r.latency_ms = m.latency_ms();
-  for (int i = 0; i < 6; ++i) r.info_eigenvalues[i] = m.information_eigenvalues()[i];
-  // The correction of the keyframe's pose: its position moves by dT c - c (c = pivot), its attitude by dR.
-  const Eigen::Isometry3d T = dds::from_msg(m.correction_W());
-  const Eigen::Vector3d c = dds::from_msg(m.pivot_W());
-  r.dp_m = T * c - c;
-  // Roll, pitch, yaw (ZYX) of the correction.
-  const Eigen::Matrix3d R = T.linear();
-  r.drpy_deg = Eigen::Vector3d(std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0)),
-                               std::atan2(R(1, 0), R(0, 0))) * 180.0 / M_PI;
-  return r;
-}
-
 // A twin-mode run's twin-change report (twinslam twin changes); a run that cannot be compared keeps its outputs and
 // says why on stderr.
 void write_changes_of_run(const fs::path& out, bool quiet) {
@@ -90,11 +52,16 @@ void write_changes_of_run(const fs::path& out, bool quiet) {
   }
 }
 
-int pick_domain(int requested) {
+// The domain the user gave (--domain, else TWINSLAM_DOMAIN), if any.
+std::optional<int> given_domain(int requested) {
   if (requested >= 0) return requested;
   if (const char* env = std::getenv("TWINSLAM_DOMAIN"); env != nullptr && *env != '\0') return std::atoi(env);
-  // Private per run, claimed on this host (domain_claim.hpp): parallel runs and tests stay apart.
-  return process::claim_dds_domain(100, 100, static_cast<unsigned>(getpid()));
+  return std::nullopt;
+}
+
+// Else a private one per run, claimed on this host (domain_claim.hpp): parallel runs and tests stay apart.
+int pick_domain(std::optional<int> given) {
+  return given ? *given : process::claim_dds_domain(100, 100, static_cast<unsigned>(getpid()));
 }
 
 }  // namespace
@@ -103,8 +70,9 @@ int run_pipeline(const RunOptions& o) {
   // Refused before anything starts or is written: run.json must never name a mode that did not run.
   require_implemented_mode(o.mode);
   const std::set<std::string> restartable = restart_set(o);
-  const char* env_domain = std::getenv("TWINSLAM_DOMAIN");
-  check_shared_edge(o, uses_twin(o.mode), o.domain >= 0 || (env_domain != nullptr && *env_domain != '\0'));
+  const std::optional<int> domain_given = given_domain(o.domain);
+  check_shared_edge(o, uses_twin(o.mode), domain_given.has_value());
+  const std::set<std::string> external = external_set(o, uses_twin(o.mode), domain_given.has_value());
   const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
   if (o.features) ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
   check_config_dir(o.config_dir);
@@ -131,11 +99,12 @@ int run_pipeline(const RunOptions& o) {
       throw UsageError("mode '" + o.mode + "': the dataset has no GNSS (mav0/gnss0) for the initial alignment; give "
                        "--initial-pose \"E N U YAW_DEG\"");
     }
-    if (!o.shared_edge) twin_store = dataset_twin_store(*geo, o.quiet);  // else the edge's tiles serve their own
+    // Else the edge's tiles serve their own store.
+    if (started_by_run(o, "tiles")) twin_store = dataset_twin_store(*geo, o.quiet);
   }
   const fs::path out = o.out;
   fs::create_directories(out);
-  const int domain = pick_domain(o.domain);
+  const int domain = pick_domain(domain_given);
   install_shutdown_handlers();
   const auto wall0 = std::chrono::steady_clock::now();
 
@@ -154,52 +123,8 @@ int run_pipeline(const RunOptions& o) {
   const auto since_ms = [wall0] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
   };
-  MonitorHooks hooks;
-  // The run records its own vehicle: an edge shared by a fleet (--shared-edge) answers every vehicle in partitions
-  // this one also reads, and keyframe stamps of different vehicles can coincide.
-  const auto other = [&o](const std::string& vehicle_id) { return vehicle_id != o.vehicle; };
-  hooks.image = [&](const msg::Image& m) {
-    if (!other(m.vehicle_id())) record.frame_in(m.stamp_ns(), since_ms());
-  };
-  hooks.features = [&](const msg::FeatureFrame& m) {
-    if (other(m.vehicle_id())) return;
-    if (o.features) record.frame_in(m.stamp_ns(), since_ms());
-    record.features(m.stamp_ns(), m.tracking_ms());
-  };
   std::atomic<std::size_t> poses{0};  // frames the estimator has finished: the progress of the run
-  hooks.odometry = [&](const msg::Odometry& m) {
-    if (other(m.vehicle_id())) return;
-    record.odometry(to_record(m), since_ms());
-    poses.fetch_add(1, std::memory_order_relaxed);
-  };
-  hooks.local_map = [&](const msg::LocalMap& m) {
-    if (other(m.vehicle_id())) return;
-    // The estimator sends its covariance once it has a world alignment: then the keyframe pose is in W.
-    std::optional<Eigen::Isometry3d> T_WB;
-    std::vector<std::uint64_t> ids;
-    ids.reserve(m.landmarks().size());
-    for (const msg::Landmark& l : m.landmarks()) ids.push_back(l.id());
-    record.landmarks_seen(ids, m.keyframe_stamp_ns(), dds::from_msg(m.T_LB()).translation());
-    if (!m.T_WB_covariance().empty()) {
-      const Eigen::Isometry3d T_WL = dds::from_msg(m.T_WL());
-      T_WB = T_WL * dds::from_msg(m.T_LB());
-      std::vector<LandmarkRecord> in_W;
-      in_W.reserve(m.landmarks().size());
-      for (const msg::Landmark& l : m.landmarks()) {
-        LandmarkRecord r;
-        r.id = l.id();
-        r.keyframe_stamp_ns = m.keyframe_stamp_ns();
-        r.p_W = T_WL * dds::from_msg(l.p_L());
-        r.quality = l.quality();
-        in_W.push_back(r);
-      }
-      record.landmarks_W(in_W, T_WL);
-    }
-    record.local_map(m.keyframe_stamp_ns(), since_ms(), m.landmarks().size(), T_WB);
-  };
-  hooks.registration = [&](const msg::Registration& m) {
-    if (!other(m.vehicle_id())) record.registration(to_record(m), since_ms());
-  };
+  MonitorHooks hooks = record_hooks(record, o.vehicle, o.features, since_ms, poses);
   // Declared before the monitor: its readers (which record into it) close first.
   std::unique_ptr<McapRecorder> mcap;
   if (o.mcap) {
@@ -216,45 +141,23 @@ int run_pipeline(const RunOptions& o) {
     if (view_geo) monitor.well_known().set_origin(origin_text(view_geo->origin));
   }
 
-  const std::string replay = o.realtime ? "--realtime" : "--max";
-  // With --features the dataset's ideal tracks replace the image frontend.
-  std::vector<std::string> services{"estimator"};
-  if (!o.features) services.insert(services.begin(), "tracking");
-  if (uses_twin(o.mode)) {
-    services.push_back("tiles");
-    services.push_back("registration");
-  }
-  if (o.bridge_port >= 0) services.push_back("bridge");
+  const ServiceInputs inputs{dataset.root, twin_store, geo ? origin_text(geo->origin) : "",
+                             view_geo ? origin_text(view_geo->origin) : "",
+                             fs::is_regular_file(truth) ? truth : fs::path()};
+  const std::vector<std::string> services = pipeline_services(o);
   process::Supervisor supervisor({out / "logs"});
   std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", std::to_string(domain)}};
   if (o.shared_edge) env["TWINSLAM_PARTITION"] = o.vehicle;
   for (const auto& s : services) {
-    if (!started_by_run(o, s)) continue;  // the shared edge's: awaited below like the run's own
-    std::vector<std::string> args{"--vehicle", o.vehicle, replay};
-    const std::string camera = (dataset.root / "mav0/cam0/sensor.yaml").string();
-    if (s == "tracking") args.insert(args.end(), {"--camera", camera});
-    if (s == "tiles") args.insert(args.end(), {"--twin", twin_store.string()});
-    if (s == "registration") args.insert(args.end(), {"--weights", o.weights});
-    if (s == "bridge") {  // every vehicle; the view also draws the dataset's truth and GNSS in W
-      args = {"--vehicle", "", replay, "--port", std::to_string(o.bridge_port)};
-      if (view_geo) args.insert(args.end(), {"--origin", origin_text(view_geo->origin)});
-      if (fs::is_regular_file(truth)) args.insert(args.end(), {"--truth", o.vehicle + "=" + truth.string()});
-    }
-    if (s == "estimator") {
-      args.insert(args.end(), {"--camera", camera, "--imu", (dataset.root / "mav0/imu0/sensor.yaml").string()});
-      if (geo) args.insert(args.end(), {"--origin", origin_text(geo->origin)});
-      if (fuses_gnss(o.mode)) args.push_back("--fuse-gnss");
-      if (fuses_gnss_loose(o.mode)) args.push_back("--fuse-gnss-loose");
-      if (uses_twin(o.mode)) {
-        args.push_back("--fuse-registrations");
-        // Lockstep: each registration is fused at the same frame in every run, whatever the edge's speed.
-        if (!o.realtime) args.push_back("--await-registration");
+    std::vector<std::string> args = service_args(s, o, inputs);
+    if (!started_by_run(o, s)) {  // the shared edge's or --external: awaited below like the run's own
+      if (external.contains(s) && !o.quiet) {
+        std::string line = "twinslam-" + s;
+        for (const auto& a : args) line += " " + (a.empty() || a.find(' ') != std::string::npos ? "'" + a + "'" : a);
+        std::cerr << "twinslam run: waiting for the external " << s << " (as the run would start it: " << line << ")"
+                  << std::endl;
       }
-      if (geo && !o.initial_pose.empty()) {
-        args.insert(args.end(), {"--initial-pose", o.initial_pose});
-      } else if (geo) {
-        args.push_back("--align-gnss");
-      }
+      continue;
     }
     for (auto& a : config_args(o.config_dir, s)) args.push_back(std::move(a));
     process::ProcessSpec spec = place_service({s, "twinslam-" + s, args, env, {}, false}, o, security);
@@ -270,29 +173,17 @@ int run_pipeline(const RunOptions& o) {
       throw_startup_failure(supervisor.stop_all(), out / "logs");  // exit 2 with its line if its input was bad
     }
     if (std::chrono::steady_clock::now() > ready_deadline) {
-      throw std::runtime_error(o.shared_edge ? "services not ready in time (is the shared edge's tiles and registration "
-                                               "running in domain " + std::to_string(domain) + ", partitions 'edge,*'?)"
-                                             : "services not ready in time");
+      throw std::runtime_error(
+          o.shared_edge ? "services not ready in time (is the shared edge's tiles and registration running in domain " +
+                              std::to_string(domain) + ", partitions 'edge,*'?)"
+          : !external.empty() ? "services not ready in time (are the --external ones running in domain " +
+                                    std::to_string(domain) + "?)"
+                              : "services not ready in time");
     }
   }
-  // Readers ingest must see before its first sample: every subscriber of each stream plus this recorder.
-  // Camera frames (images, or feature frames with --features) go to tracking or to the estimator.
-  // The bridge subscribes to every stream: one more reader of each; so does each --extra-readers recorder (without the
-  // wait, a `twinslam record` that discovers ingest late misses the first samples).
-  const int viewer = (o.bridge_port >= 0 ? 1 : 0) + o.extra_readers;
-  const int imu_readers = (o.features ? 2 : 3) + viewer;
-  // GNSS: this recorder, the estimator (global inputs, sensor_worker.hpp), and tiles in twin modes.
-  const int gnss_readers = 2 + (uses_twin(o.mode) ? 1 : 0) + viewer;
-  std::vector<std::string> ingest_args{"--dataset", dataset.root.string(), "--vehicle", o.vehicle, replay,
-                                       "--wait-readers",
-                                       "imu=" + std::to_string(imu_readers) + ",image=" + std::to_string(2 + viewer) +
-                                           ",gnss=" +
-                                           std::to_string(dataset.gnss.empty() ? 0 : gnss_readers)};
-  if (o.features) ingest_args.push_back("--features");
-  for (auto& a : config_args(o.config_dir, "ingest")) ingest_args.push_back(std::move(a));
-  // Lockstep: the next frame goes out once every stage has finished the previous one.
-  if (!o.realtime) ingest_args.insert(ingest_args.end(), {"--ack-from", o.features ? "estimator" : "tracking,estimator"});
-  supervisor.start(place_service({"ingest", "twinslam-ingest", ingest_args, env, {}, true}, o, security));
+  std::vector<std::string> ingest = ingest_args(o, inputs, !dataset.gnss.empty());
+  for (auto& a : config_args(o.config_dir, "ingest")) ingest.push_back(std::move(a));
+  supervisor.start(place_service({"ingest", "twinslam-ingest", ingest, env, {}, true}, o, security));
   // One pose per camera frame: the bar counts the estimator's poses against the dataset's frames.
   Progress progress(o.progress_label, dataset.images.size(), o.progress);
   auto event = process::Supervisor::Event::Timeout;
@@ -330,6 +221,7 @@ int run_pipeline(const RunOptions& o) {
                      {"secure", o.secure},
                      {"edge_netns", o.edge_netns.empty() ? nlohmann::json() : nlohmann::json(o.edge_netns)},
                      {"shared_edge", o.shared_edge},
+                     {"external", external},
                      {"messages", messages},
                      {"services", svc},
                      {"poses", record.odometry_count()}};
@@ -369,7 +261,7 @@ int run_pipeline(const RunOptions& o) {
     run["origin"] = {{"lat_deg", geo->origin.lat_deg}, {"lon_deg", geo->origin.lon_deg}, {"alt_m", geo->origin.alt_m}};
   }
   if (uses_twin(o.mode)) {
-    run["twin"] = {{"store", o.shared_edge ? nlohmann::json() : nlohmann::json(twin_store.string())},
+    run["twin"] = {{"store", twin_store.empty() ? nlohmann::json() : nlohmann::json(twin_store.string())},
                    {"weights", o.weights},
                    {"initial_alignment", o.initial_pose.empty() ? std::string("gnss") : "pose " + o.initial_pose}};
   }
@@ -419,6 +311,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--shared-edge", o->shared_edge,
                 "Twin modes: tiles and registration of a fleet's edge already run in --domain (scripts/fleet.sh); "
                 "start neither, talk in the DDS partition named after --vehicle");
+  cmd->add_option("--external", o->external,
+                  "Services started outside the run (containers, other hosts: docker/demo.sh), comma-separated from "
+                  "tracking, estimator, tiles, registration; the run waits for them in --domain");
   cmd->add_option("--edge-netns", o->edge_netns,
                   "Run tiles and registration in this network namespace (`ip netns exec`; scripts/two-hosts.sh)");
   cmd->add_option("--restart", o->restart,

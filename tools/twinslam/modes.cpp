@@ -44,4 +44,9 @@ void require_implemented_mode(const std::string& mode) {
   throw UsageError("mode '" + mode + "': " + why + "; implemented: " + implemented_modes_text());
 }
 
+bool uses_twin(const std::string& mode) { return mode.rfind("vio-twin", 0) == 0; }
+bool fuses_gnss(const std::string& mode) { return mode == "vio-gnss" || mode == "vio-twin-gnss"; }
+bool fuses_gnss_loose(const std::string& mode) { return mode == "vio-gnss-loose"; }
+bool needs_gnss(const std::string& mode) { return fuses_gnss(mode) || fuses_gnss_loose(mode); }
+
 }  // namespace twinslam::cli

@@ -43,7 +43,11 @@ TopicMonitor::TopicMonitor(dds::Node& node, bool reliable, MonitorHooks hooks) :
       const auto& st = node.subscribe<T>(spec, [this, hook, &spec](const T& m) {
         if (hooks_.cdr) hooks_.cdr(spec, dds::to_cdr(m));
         if (hooks_.well_known) hooks_.well_known(well_known_.on(m));
-        if (hook != nullptr && *hook) (*hook)(m);
+        if (hook == nullptr || !*hook) return;
+        if constexpr (requires { m.vehicle_id(); }) {  // every per-vehicle message (not MapTile)
+          if (hooks_.vehicle && m.vehicle_id() != *hooks_.vehicle) return;
+        }
+        (*hook)(m);
       }, profile);
       entries_.push_back({&spec, &st});
     });

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ struct MonitorHooks {
   std::function<void(const msg::Odometry&)> odometry;
   std::function<void(const msg::Registration&)> registration;
   std::function<void(const msg::LocalMap&)> local_map;
+  // When set, the five hooks above see only this vehicle's messages (a shared edge answers every vehicle in
+  // partitions a run also reads); the cdr and well_known hooks and the counts see every message.
+  std::optional<std::string> vehicle;
   // Every message of every topic as its CDR bytes (dds/cdr.hpp), e.g. for an MCAP recording; serialized only when set.
   std::function<void(const dds::TopicSpec&, const std::vector<std::uint8_t>&)> cdr;
   // Every message's forms in Foxglove's well-known schemas (common/foxglove, as the bridge sends them); converted

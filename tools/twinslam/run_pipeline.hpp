@@ -17,6 +17,7 @@ struct RunOptions {
   std::string progress_label = "run";         // the bar's label (bench: the mode)
   int domain = -1;
   bool shared_edge = false;  // --shared-edge: tiles and registration of a fleet's edge already run (run_placement.hpp)
+  std::string external;  // --external: services started outside the run (containers, another host), comma-separated
   std::string edge_netns;  // --edge-netns NAME: tiles and registration run in that network namespace (ip netns exec)
   bool secure = false;       // --secure: DDS-Security, each process with its role's identity (run_security.hpp)
   std::string security_dir;  // --security-dir: its files (empty: $TWINSLAM_SECURITY_DIR, else the user's state dir)

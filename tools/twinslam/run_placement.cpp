@@ -53,8 +53,40 @@ void check_shared_edge(const RunOptions& o, bool twin_mode, bool domain_given) {
   if (o.secure) throw UsageError("--shared-edge with --secure is not implemented (the permissions name no partitions)");
 }
 
+std::set<std::string> external_set(const RunOptions& o, bool twin_mode, bool domain_given) {
+  std::set<std::string> services;
+  if (o.external.empty()) return services;
+  for (const auto name : split(o.external, ',')) {
+    const std::string s(name);
+    if (s != "tracking" && s != "estimator" && s != "tiles" && s != "registration") {
+      throw UsageError("--external: '" + s + "' is not a service the run can leave to others (tracking, estimator, "
+                       "tiles, registration)");
+    }
+    if (s == "tracking" && o.features) throw UsageError("--external tracking: with --features the run has no tracking");
+    if ((s == "tiles" || s == "registration") && !twin_mode) {
+      throw UsageError("--external " + s + ": mode '" + o.mode + "' uses no " + s + " (a twin mode does)");
+    }
+    services.insert(s);
+  }
+  if (!domain_given) {
+    throw UsageError("--external: give the DDS domain the services run in (--domain or TWINSLAM_DOMAIN); a private one "
+                     "would never meet them");
+  }
+  if (o.secure) throw UsageError("--external with --secure is not implemented (the run cannot hand out identities)");
+  if (o.shared_edge) throw UsageError("--external and --shared-edge: name the edge's services in --external instead");
+  if (!o.edge_netns.empty() && (services.contains("tiles") || services.contains("registration"))) {
+    throw UsageError("--external: tiles and registration run elsewhere, --edge-netns cannot place them");
+  }
+  return services;
+}
+
 bool started_by_run(const RunOptions& o, const std::string& s) {
-  return !(o.shared_edge && (s == "tiles" || s == "registration"));
+  if (o.shared_edge && (s == "tiles" || s == "registration")) return false;
+  if (o.external.empty()) return true;
+  for (const auto name : split(o.external, ',')) {
+    if (name == s) return false;
+  }
+  return true;
 }
 
 }  // namespace twinslam::cli

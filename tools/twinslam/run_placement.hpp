@@ -26,7 +26,14 @@ std::set<std::string> restart_set(const RunOptions& o);
 // would never meet the edge), a vehicle id that is empty or a pattern, or with --edge-netns / --secure.
 void check_shared_edge(const RunOptions& o, bool twin_mode, bool domain_given);
 
-// Whether the run starts service `s` itself (not the shared edge's tiles or registration).
+// --external: the services of the pipeline that run outside it (containers, other hosts: docker/demo.sh), started
+// with the arguments the run would give them; the run waits for their heartbeats in `domain`, starts the rest and
+// records. UsageError for a name that is not tracking, estimator, tiles or registration, for one this run does not use
+// (tracking with --features, tiles or registration outside twin modes), without a domain, and with --secure,
+// --edge-netns or --shared-edge.
+std::set<std::string> external_set(const RunOptions& o, bool twin_mode, bool domain_given);
+
+// Whether the run starts service `s` itself (not the shared edge's tiles or registration, not an --external one).
 bool started_by_run(const RunOptions& o, const std::string& s);
 
 }  // namespace twinslam::cli

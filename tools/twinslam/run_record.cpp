@@ -184,9 +184,12 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
       f << ',' << r.latency_ms << ',';
       if (std::isfinite(r.pipeline_latency_ms)) f << r.pipeline_latency_ms;
       f << ',' << reason;
-      if (r.keyframe_T_WB) {
-        const Eigen::Vector3d p = r.keyframe_T_WB->translation();
-        const Eigen::Quaterniond q(r.keyframe_T_WB->linear());
+      // The keyframe's pose from its LocalMap, which may reach this recorder after the registration (another reader).
+      std::optional<Eigen::Isometry3d> kf = r.keyframe_T_WB;
+      if (const auto pose = local_map_T_WB_.find(r.stamp_ns); !kf && pose != local_map_T_WB_.end()) kf = pose->second;
+      if (kf) {
+        const Eigen::Vector3d p = kf->translation();
+        const Eigen::Quaterniond q(kf->linear());
         char pose[200];
         std::snprintf(pose, sizeof pose, ",%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f", p.x(), p.y(), p.z(), q.x(), q.y(), q.z(),
                       q.w());
