@@ -100,7 +100,7 @@ int run_pipeline(const RunOptions& o) {
                        "--initial-pose \"E N U YAW_DEG\"");
     }
     // Else the edge's tiles serve their own store.
-    if (started_by_run(o, "tiles")) twin_store = dataset_twin_store(*geo, o.quiet);
+    if (started_by_run(o, external, "tiles")) twin_store = dataset_twin_store(*geo, o.quiet);
   }
   const fs::path out = o.out;
   fs::create_directories(out);
@@ -150,10 +150,14 @@ int run_pipeline(const RunOptions& o) {
   if (o.shared_edge) env["TWINSLAM_PARTITION"] = o.vehicle;
   for (const auto& s : services) {
     std::vector<std::string> args = service_args(s, o, inputs);
-    if (!started_by_run(o, s)) {  // the shared edge's or --external: awaited below like the run's own
+    if (!started_by_run(o, external, s)) {  // the shared edge's or --external: awaited below like the run's own
       if (external.contains(s) && !o.quiet) {
         std::string line = "twinslam-" + s;
-        for (const auto& a : args) line += " " + (a.empty() || a.find(' ') != std::string::npos ? "'" + a + "'" : a);
+        for (const auto& a : args) {
+          // The run builds no store for external tiles: they serve their own (`twinslam twin build`).
+          const std::string shown = s == "tiles" && a.empty() ? "STORE" : a;
+          line += " " + (shown.empty() || shown.find(' ') != std::string::npos ? "'" + shown + "'" : shown);
+        }
         std::cerr << "twinslam run: waiting for the external " << s << " (as the run would start it: " << line << ")"
                   << std::endl;
       }

@@ -80,13 +80,9 @@ std::set<std::string> external_set(const RunOptions& o, bool twin_mode, bool dom
   return services;
 }
 
-bool started_by_run(const RunOptions& o, const std::string& s) {
+bool started_by_run(const RunOptions& o, const std::set<std::string>& external, const std::string& s) {
   if (o.shared_edge && (s == "tiles" || s == "registration")) return false;
-  if (o.external.empty()) return true;
-  for (const auto name : split(o.external, ',')) {
-    if (name == s) return false;
-  }
-  return true;
+  return !external.contains(s);
 }
 
 }  // namespace twinslam::cli

@@ -33,7 +33,8 @@ void check_shared_edge(const RunOptions& o, bool twin_mode, bool domain_given);
 // --edge-netns or --shared-edge.
 std::set<std::string> external_set(const RunOptions& o, bool twin_mode, bool domain_given);
 
-// Whether the run starts service `s` itself (not the shared edge's tiles or registration, not an --external one).
-bool started_by_run(const RunOptions& o, const std::string& s);
+// Whether the run starts service `s` itself (not the shared edge's tiles or registration, not one of `external`, the
+// set external_set returned).
+bool started_by_run(const RunOptions& o, const std::set<std::string>& external, const std::string& s);
 
 }  // namespace twinslam::cli
