@@ -53,18 +53,20 @@ struct FaultRun {
   std::vector<std::string> registrations;  // registrations.csv lines (twin modes)
 };
 
-// `twinslam run DATASET --mode vio --features` with `ingest_yaml` as the ingest config ("" for none).
-FaultRun run_with(const std::string& name, const std::string& ingest_yaml) {
+// `twinslam run DATASET --mode vio --features` with `ingest_yaml` as the ingest config ("" for none); with `images` the
+// dataset's images through the tracking service instead of its ideal feature tracks.
+FaultRun run_with(const std::string& name, const std::string& ingest_yaml, bool images = false) {
   const fs::path dataset = tiny_dataset();
   const fs::path base = kWork / (name + "_" + std::to_string(::getpid()));
   fs::remove_all(base);
   fs::create_directories(base / "config");
   if (!ingest_yaml.empty()) std::ofstream(base / "config/ingest.yaml") << ingest_yaml;
   FaultRun r;
-  const auto run = test::run_process({test::bin("twinslam"), "run", dataset.string(), "--mode", "vio", "--features",
-                                      "--out", (base / "run").string(), "--config-dir", (base / "config").string(),
-                                      "--domain", std::to_string(test::test_domain())},
-                                     {}, std::chrono::seconds(180));
+  std::vector<std::string> args{test::bin("twinslam"), "run", dataset.string(), "--mode", "vio", "--out",
+                                (base / "run").string(), "--config-dir", (base / "config").string(), "--domain",
+                                std::to_string(test::test_domain())};
+  if (!images) args.push_back("--features");
+  const auto run = test::run_process(args, {}, std::chrono::seconds(240));
   r.output = run.out + run.err;
   if (run.exit_code != 0) return r;
   r.run = nlohmann::json::parse(read_text(base / "run/run.json"));
@@ -79,34 +81,35 @@ FaultRun run_with(const std::string& name, const std::string& ingest_yaml) {
 // What the clean run depends on: the dataset and the services' builds.
 std::string clean_stamp() {
   std::string stamp = read_text(kWork / "tiny.stamp");
-  for (const char* exe : {"twinslam", "twinslam-ingest", "twinslam-estimator"}) {
-    stamp += " " + std::to_string(fs::last_write_time(test::bin(exe)).time_since_epoch().count());
+  for (const char* exe : {"twinslam", "twinslam-ingest", "twinslam-tracking", "twinslam-estimator"}) {
+    stamp.append(" ").append(std::to_string(fs::last_write_time(test::bin(exe)).time_since_epoch().count()));
   }
   return stamp;
 }
 
-// The clean run's ATE, once per dataset and build.
-double clean_ate() {
-  const fs::path dataset = tiny_dataset();
-  {
-    FileLock lock(kWork / "clean.lock");
-    const std::string cached = read_text(kWork / "clean_ate.txt");
-    if (!cached.empty() && read_text(kWork / "clean.stamp") == clean_stamp()) return std::stod(cached);
-    const FaultRun clean = run_with("clean", "");
-    EXPECT_EQ(clean.run.value("status", ""), "ok") << clean.output;
-    // Without faults no pose reports one: the bits are not noise.
-    EXPECT_TRUE(clean.run["odometry_faults"].empty()) << clean.run["odometry_faults"].dump();
-    EXPECT_GT(clean.ate_m, 0.0) << clean.output;
-    std::ofstream(kWork / "clean_ate.txt") << clean.ate_m;
-    std::ofstream(kWork / "clean.stamp") << clean_stamp();
-    return clean.ate_m;
-  }
+// The clean run's ATE (from images or from the ideal tracks), once per dataset and build.
+double clean_ate(bool images = false) {
+  tiny_dataset();
+  const std::string kind = images ? "clean_images" : "clean";
+  FileLock lock(kWork / (kind + ".lock"));
+  const std::string cached = read_text(kWork / (kind + "_ate.txt"));
+  if (!cached.empty() && read_text(kWork / (kind + ".stamp")) == clean_stamp()) return std::stod(cached);
+  const FaultRun clean = run_with(kind, "", images);
+  EXPECT_EQ(clean.run.value("status", ""), "ok") << clean.output;
+  // Without faults no pose reports one: the bits are not noise.
+  EXPECT_TRUE(clean.run["odometry_faults"].empty()) << clean.run["odometry_faults"].dump();
+  EXPECT_GT(clean.ate_m, 0.0) << clean.output;
+  std::ofstream(kWork / (kind + "_ate.txt")) << clean.ate_m;
+  std::ofstream(kWork / (kind + ".stamp")) << clean_stamp();
+  return clean.ate_m;
 }
 
 // Runs with the fault and checks the three promises; `counter` is the odometry_faults entry that must report it.
-void expect_defined_behaviour(const std::string& name, const std::string& faults_yaml, const std::string& counter) {
-  const double clean = clean_ate();
-  const FaultRun r = run_with(name, "faults:\n" + faults_yaml);
+// `images`: the camera's images go through the tracking service (the fault then meets a real tracker).
+void expect_defined_behaviour(const std::string& name, const std::string& faults_yaml, const std::string& counter,
+                              bool images = false) {
+  const double clean = clean_ate(images);
+  const FaultRun r = run_with(name, "faults:\n" + faults_yaml, images);
   ASSERT_FALSE(r.run.is_null()) << r.output;
   EXPECT_EQ(r.run["status"], "ok") << r.output;
   for (const auto& [service, code] : r.run["services"].items()) EXPECT_EQ(code, 0) << service;
@@ -144,6 +147,19 @@ TEST(SensorFaults, BlackAndSaturatedFramesAreBridgedByTheImuAndReported) {
   expect_defined_behaviour("frame_dark",
                            "  frame_black: {at_s: 8, duration_s: 0.5}\n  frame_saturated: {at_s: 14, duration_s: 2.0}\n",
                            "frames_few_features");
+}
+
+// The same camera faults on images: the tracking service meets black and saturated pixels (no corners, every track
+// lost) and dropped frames (a jump in the image), and must start its tracks again after them; the estimator bridges
+// the featureless frames with the IMU and reports them.
+TEST(SensorFaults, BlackAndSaturatedImagesMeetTheTrackerAndAreReported) {
+  expect_defined_behaviour("image_dark",
+                           "  frame_black: {at_s: 8, duration_s: 0.5}\n  frame_saturated: {at_s: 14, duration_s: 2.0}\n",
+                           "frames_few_features", /*images=*/true);
+}
+
+TEST(SensorFaults, DroppedImagesAreReported) {
+  expect_defined_behaviour("image_drop", "  frame_drop: {at_s: 12, duration_s: 1.0}\n", "frame_gaps", /*images=*/true);
 }
 
 // Missing twin tiles (a store whose tile files are gone around the flight): the tiles service reports each failed
@@ -231,7 +247,7 @@ double clean_twin_ate() {
   FileLock lock(kWork / "clean_twin.lock");
   std::string stamp = clean_stamp();
   for (const char* exe : {"twinslam-tiles", "twinslam-registration"}) {
-    stamp += " " + std::to_string(fs::last_write_time(test::bin(exe)).time_since_epoch().count());
+    stamp.append(" ").append(std::to_string(fs::last_write_time(test::bin(exe)).time_since_epoch().count()));
   }
   const std::string cached = read_text(kWork / "clean_twin_ate.txt");
   if (!cached.empty() && read_text(kWork / "clean_twin.stamp") == stamp) return std::stod(cached);
