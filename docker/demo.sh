@@ -3,24 +3,39 @@
 # (ingest, tracking, estimator) as separate compose projects joined only by the link network, flies the dataset in
 # mode vio-twin in real time, prints the accuracy table and tears everything down (containers, networks, the engine).
 #
-#   bash docker/demo.sh [DATASET] [--features] [--out OUT] [--no-reference] [--keep-engine]
+#   bash docker/demo.sh [DATASET] [--features] [--out OUT] [--no-reference] [--keep-engine] [--swap SERVICE@SECONDS]
 #
 # DATASET: default runs/city-loops (the main job's default city; simulated once, in a container, when missing).
 # --features: the dataset's ideal feature tracks instead of images (the drone then runs no tracking container).
 # OUT (default runs/docker-demo): containers/run (the containers' run: trajectory, registrations, run.json, logs/ of
 # every container), twin-store, native/run (the same flight without containers, when this checkout is built:
 # build/bin or TWINSLAM_BIN; --no-reference skips it), table.md. Needs root (the engine; docker/engine.sh).
+# --swap SERVICE@SECONDS: SECONDS into the flight the edge's SERVICE (tiles or registration) is upgraded in place, as
+# an operator would: its container is stopped and replaced by one from another image tag (the same build, tagged
+# twinslam:swapped) while the drone flies on; the demo then prints, for both runs, the largest gap between poses, the
+# swap's start and end (the new container's first heartbeat) and the first registration accepted after it
+# (scripts/faults/common.sh). The swap's times: OUT/containers/swap.log.
 set -euo pipefail
 die() { echo "demo.sh: $*" >&2; exit 2; }
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-dataset=""; out=$root/runs/docker-demo; features=""; reference=1; keep_engine=0
+dataset=""; out=$root/runs/docker-demo; features=""; reference=1; keep_engine=0; swap=""; swap_after=0
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --features) features=--features; shift ;;
     --out) [[ $# -ge 2 ]] || die "--out needs a folder"; out=$2; shift 2 ;;
     --no-reference) reference=0; shift ;;
     --keep-engine) keep_engine=1; shift ;;
-    -*) die "unknown option $1 (usage: demo.sh [DATASET] [--features] [--out OUT] [--no-reference] [--keep-engine])" ;;
+    --swap)
+      [[ $# -ge 2 && $2 =~ ^([a-z]+)@([0-9]+([.][0-9]+)?)$ ]] || die "--swap needs SERVICE@SECONDS, e.g. registration@60"
+      swap=${BASH_REMATCH[1]}; swap_after=${BASH_REMATCH[2]}; shift 2
+      case "$swap" in
+        tiles|registration) ;;
+        estimator|tracking|ingest) die "--swap $swap: only the edge's services are swapped in flight (a restarted" \
+          "estimator does not recover yet: README, \"The estimator killed and restarted\"; ingest is the run itself)" ;;
+        *) die "--swap $swap: not a service of the demo (tiles or registration)" ;;
+      esac ;;
+    -*) die "unknown option $1 (usage: demo.sh [DATASET] [--features] [--out OUT] [--no-reference] [--keep-engine]" \
+          "[--swap SERVICE@SECONDS])" ;;
     *) [[ -z $dataset ]] || die "one dataset only"; dataset=$1; shift ;;
   esac
 done
@@ -79,6 +94,32 @@ cleanup_projects() {
   docker-compose -p twinslam-edge -f "$root/docker/compose.edge.yml" down -t 5 > /dev/null 2>&1 || true
   docker network rm twinslam-link > /dev/null 2>&1 || true
 }
+# swap_edge_service SERVICE AFTER_S DIR: AFTER_S seconds after the flight's replay starts, stop SERVICE's container
+# (its log kept in DIR/run/logs/container-SERVICE-before-swap.log) and start one from the image tagged
+# twinslam:swapped; "fault begins/ends at" lines (the end: the new container's first heartbeat) for report().
+swap_edge_service() {
+  local service=$1 after=$2 dir=$3 edge=(docker-compose -p twinslam-edge -f "$root/docker/compose.edge.yml")
+  for _ in $(seq 1200); do
+    grep -q 'replay starts' "$dir/run/logs/ingest.log" 2> /dev/null && break
+    kill -0 "$drone_pid" 2> /dev/null || return 0  # the drone ended before its replay began: its log says why
+    sleep 0.1
+  done
+  sleep "$after"
+  kill -0 "$drone_pid" 2> /dev/null || { echo "swap: the flight ended before ${after} s"; return 0; }
+  echo "fault begins at $(date +%H:%M:%S.%N | cut -c1-12): stopping $service"
+  "${edge[@]}" stop -t 10 "$service" > /dev/null 2>&1 || true
+  "${edge[@]}" logs --no-color "$service" > "$dir/run/logs/container-$service-before-swap.log" 2>&1 || true
+  docker tag "$image" twinslam:swapped
+  TWINSLAM_IMAGE=twinslam:swapped "${edge[@]}" up -d --no-deps "$service" > /dev/null 2>&1 ||
+    { echo "swap: $service did not start from twinslam:swapped"; return 0; }
+  for _ in $(seq 60); do
+    if "${edge[@]}" exec -T "$service" twinslam-healthcheck > /dev/null 2>&1; then
+      echo "fault ends at $(date +%H:%M:%S.%N | cut -c1-12): $service serving again from twinslam:swapped"
+      return 0
+    fi
+  done
+  echo "swap: no heartbeat from the new $service within 3 min"
+}
 cleanup_projects  # a demo interrupted before left them behind
 docker network create twinslam-link > /dev/null
 docker-compose -p twinslam-edge -f "$root/docker/compose.edge.yml" up -d 2> "$out/containers/edge-up.log" ||
@@ -86,7 +127,12 @@ docker-compose -p twinslam-edge -f "$root/docker/compose.edge.yml" up -d 2> "$ou
 echo "demo.sh: edge up (tiles, registration); the drone flies $dataset in real time" >&2
 status=0
 docker-compose -p twinslam-drone -f "$root/docker/compose.drone.yml" up --exit-code-from ingest \
-  --abort-on-container-exit "${drone_services[@]}" > "$out/containers/drone-up.log" 2>&1 || status=$?
+  --abort-on-container-exit "${drone_services[@]}" > "$out/containers/drone-up.log" 2>&1 &
+drone_pid=$!
+if [[ -n $swap ]]; then swap_edge_service "$swap" "$swap_after" "$out/containers" > "$out/containers/swap.log"; fi
+wait "$drone_pid" || status=$?
+# Stopped before their logs are read: registration says whom it served when it stops.
+docker-compose -p twinslam-edge -f "$root/docker/compose.edge.yml" stop -t 10 > /dev/null 2>&1 || true
 for p in drone edge; do
   for s in $(docker-compose -p "twinslam-$p" -f "$root/docker/compose.$p.yml" ps --services 2> /dev/null); do
     docker-compose -p "twinslam-$p" -f "$root/docker/compose.$p.yml" logs --no-color "$s" \
@@ -115,3 +161,14 @@ for r in containers native; do
   rows+=("$r")
 done
 python3 "$root/docker/demo_table.py" "$out" "$dataset" "${rows[@]}" | tee "$out/table.md"
+if [[ -n $swap ]]; then  # the swap's lines, in the fault scripts' shape (scripts/faults/common.sh)
+  if [[ ! -x $bin/twinslam ]]; then  # report() evaluates with $bin/twinslam: the image's, then
+    bin=$out/bin; mkdir -p "$bin"
+    printf '#!/bin/sh\nexec docker run --rm --network none -v "%s:%s:ro" -v "%s:%s" "%s" twinslam "$@"\n' \
+      "$dataset" "$dataset" "$out" "$out" "$image" > "$bin/twinslam"
+    chmod +x "$bin/twinslam"
+  fi
+  source "$root/scripts/faults/common.sh"
+  [[ -d $out/native/run ]] && report "without containers, not swapped" "$out/native" /dev/null | tee -a "$out/table.md"
+  report "containers, $swap swapped" "$out/containers" "$out/containers/swap.log" | tee -a "$out/table.md"
+fi
