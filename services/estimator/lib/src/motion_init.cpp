@@ -165,6 +165,25 @@ void reweight(std::vector<std::vector<Ray>>& landmarks, const Reduced& red, cons
   }
 }
 
+// RMS of the gravity-free acceleration of the body over the window [m/s^2]: the velocity change the IMU measured
+// between consecutive frames, g t + dv_0k in B_0 with the refined biases, over the time between them. Metric scale
+// comes only from this acceleration (c_k = v_0 t_k + g t_k^2 / 2 + dp_0k): at constant velocity every scale fits
+// the rays, and the refinement settles on a collapsed one whose landmarks are close and whose sigmas shrink with it.
+double excitation_mps2(const std::vector<FrameMotion>& motion, const ImuBias& bias, const Eigen::Vector3d& g_B0) {
+  Eigen::Vector3d u_prev = Eigen::Vector3d::Zero();
+  double t_prev = 0.0, sum = 0.0;
+  int n = 0;
+  for (const FrameMotion& m : motion) {
+    if (!m.pre || m.t_s <= t_prev) continue;
+    const Eigen::Vector3d u = g_B0 * m.t_s + m.pre->corrected(bias).v;
+    sum += ((u - u_prev) / (m.t_s - t_prev)).squaredNorm();
+    ++n;
+    u_prev = u;
+    t_prev = m.t_s;
+  }
+  return n > 0 ? std::sqrt(sum / n) : 0.0;
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -188,6 +207,9 @@ void MotionInitConfig::validate() const {
   positive(max_gravity_norm_error, "max_gravity_norm_error");
   positive(max_tilt_sigma_deg, "max_tilt_sigma_deg");
   positive(max_velocity_sigma_mps, "max_velocity_sigma_mps");
+  if (!(min_excitation_mps2 >= 0) || !std::isfinite(min_excitation_mps2)) {
+    throw InputError("motion_init.min_excitation_mps2: must be >= 0");
+  }
   positive(max_median_error_px, "max_median_error_px");
   positive(pixel_sigma, "pixel_sigma");
   positive(velocity_prior_sigma_mps, "velocity_prior_sigma_mps");
@@ -262,15 +284,16 @@ std::optional<MotionInitResult> try_motion_init(const std::vector<MotionInitFram
                                      .eigenvalues().maxCoeff()) / gravity_mps2 / kDeg;
   out.landmarks = static_cast<int>(landmarks.size());
   out.g_B0 = st.g_B0;
+  ImuBias bias;
+  bias.gyro = st.b_g;
+  bias.accel = st.b_a;
+  out.excitation_mps2 = excitation_mps2(motion, bias, st.g_B0);
   if (out.median_error_px > c.max_median_error_px || !(out.velocity_sigma_mps <= c.max_velocity_sigma_mps) ||
-      !(out.tilt_sigma_deg <= c.max_tilt_sigma_deg)) {
+      !(out.tilt_sigma_deg <= c.max_tilt_sigma_deg) || !(out.excitation_mps2 >= c.min_excitation_mps2)) {
     return std::nullopt;
   }
 
   // L: gravity along -z, heading of the newest body 0, origin at the newest body (like the static initialization).
-  ImuBias bias;
-  bias.gyro = st.b_g;
-  bias.accel = st.b_a;
   const FrameMotion& last = motion.back();
   const PreintegratedDelta d = last.pre->corrected(bias);
   const Eigen::Matrix3d R_up = Eigen::Quaterniond::FromTwoVectors(out.g_B0.normalized(), -Eigen::Vector3d::UnitZ())

@@ -24,6 +24,7 @@ void SlidingWindowConfig::validate() const {
   positive(static_window_s, "static_window_s");
   positive(init_timeout_s, "init_timeout_s");
   positive(max_rest_feature_motion_px, "max_rest_feature_motion_px");
+  positive(max_rest_gyro_bias_radps, "max_rest_gyro_bias_radps");
   positive(init_position_sigma_m, "init_position_sigma_m");
   positive(init_yaw_sigma_rad, "init_yaw_sigma_rad");
   positive(init_roll_pitch_sigma_rad, "init_roll_pitch_sigma_rad");

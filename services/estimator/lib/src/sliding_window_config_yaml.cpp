@@ -30,6 +30,7 @@ void bind_motion_init(yaml::Fields& f, MotionInitConfig& c) {
       .number("max_tilt_sigma_deg", c.max_tilt_sigma_deg, "deg")
       .number("max_velocity_sigma_mps", c.max_velocity_sigma_mps, "m/s")
       .number("max_median_error_px", c.max_median_error_px, "px")
+      .number("min_excitation_mps2", c.min_excitation_mps2, "m/s^2")
       .integer("max_refine_iterations", c.max_refine_iterations)
       .number("velocity_prior_sigma_mps", c.velocity_prior_sigma_mps, "m/s")
       .number("tilt_prior_sigma_rad", c.tilt_prior_sigma_rad, "rad");
@@ -45,6 +46,7 @@ void bind_solver_and_init(yaml::Fields& f, SlidingWindowConfig& c) {
       .number("gravity_mps2", c.gravity_mps2, "m/s^2")
       .number("static_window_s", c.static_window_s, "s")
       .number("max_rest_feature_motion_px", c.max_rest_feature_motion_px, "px")
+      .number("max_rest_gyro_bias_radps", c.max_rest_gyro_bias_radps, "rad/s")
       .number("init_timeout_s", c.init_timeout_s, "s")
       .number("init_position_sigma_m", c.init_position_sigma_m, "m")
       .number("init_yaw_sigma_rad", c.init_yaw_sigma_rad, "rad")

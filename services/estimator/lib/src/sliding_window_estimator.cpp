@@ -13,6 +13,7 @@
 #include "twinslam/estimator/motion_init.hpp"
 #include "twinslam/estimator/sliding_window_state.hpp"
 #include "twinslam/estimator/static_init.hpp"
+#include "visual_rest.hpp"
 
 namespace twinslam::estimator {
 namespace {
@@ -114,26 +115,12 @@ void reset(WindowState& s) {
   s.idle_status = EstimatorStatus::kReinitializing;
   s.first_frame_ns = -1;
   s.init_frames.clear();
+  s.rest_frames.clear();
   s.horizon.clear();  // its landmarks are in the old L
   // L is defined anew by the next initialization, so the old T_WL means nothing for it: global inputs align again.
   s.T_WL.fill(0.0);
   s.world_prior.reset();
   s.world_aligned = false;
-}
-
-// Mean angle [px] between this frame's bearings and the previous frame's, over common tracks. Without features the
-// IMU alone decides (0); with features but none in common (first frame) stillness is not shown yet (infinity).
-double feature_motion_px(const WindowState& s, const std::vector<FeatureBearing>& features) {
-  double sum = 0.0;
-  int n = 0;
-  for (const auto& b : features) {
-    const auto it = s.previous_bearings.find(b.id);
-    if (it == s.previous_bearings.end()) continue;
-    sum += std::atan2(b.f_C.cross(it->second).norm(), b.f_C.dot(it->second));
-    ++n;
-  }
-  if (features.empty()) return 0.0;
-  return n > 0 ? s.config.focal_px * sum / n : std::numeric_limits<double>::infinity();
 }
 
 // Every parameter block Ceres would get is finite. Ceres aborts the process (a CHECK) on a non-finite one, so a window
@@ -309,9 +296,7 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
     if (s.first_frame_ns < 0) s.first_frame_ns = stamp_ns;
     std::optional<ImuState> init = s.pending_init;
     s.pending_init.reset();
-    const bool still = feature_motion_px(s, features) <= s.config.max_rest_feature_motion_px;
-    s.previous_bearings.clear();
-    for (const auto& b : features) s.previous_bearings[b.id] = b.f_C;
+    const bool still = visually_still(s, stamp_ns, features);
     StatePriorSigmas sigmas = static_init_prior_sigmas(s.config);
     if (!init && still) {
       const auto end = std::upper_bound(s.imu.begin(), s.imu.end(), stamp_ns,
@@ -338,7 +323,7 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
       e.init_timed_out = 1e-9 * static_cast<double>(stamp_ns - s.first_frame_ns) > s.config.init_timeout_s;
       return finish(e);
     }
-    s.previous_bearings.clear();
+    s.rest_frames.clear();
     start_window(s, stamp_ns, *init, sigmas, features);
     FrameEstimate e = make_estimate(s, *s.frames.back(), EstimatorStatus::kTracking);
     s.local_map = LocalMapEstimate{stamp_ns, e.T_LB, e.T_WL, {}};

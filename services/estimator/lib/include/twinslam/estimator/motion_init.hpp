@@ -39,6 +39,9 @@ struct MotionInitConfig {
   double max_tilt_sigma_deg = 1.5;     // 1-sigma of the gravity direction [deg]
   double max_velocity_sigma_mps = 0.25;// 1-sigma of the velocity, per axis [m/s] (mostly the accel bias's share)
   double max_median_error_px = 2.0;    // median ray error of the solution [px]
+  // RMS gravity-free acceleration over the window [m/s^2]: below it the metric scale is not determined (steady
+  // flight) and no solution is trusted, whatever its covariance says (VINS-Mono warns at a 0.25 m/s^2 spread).
+  double min_excitation_mps2 = 0.25;
   double pixel_sigma = 1.0;            // feature noise [px] (the estimator sets its own)
   int max_refine_iterations = 10;      // of the maximum-likelihood refinement (motion_init_refine.hpp)
   // The window's prior on the initial velocity and roll / pitch after a motion init is the solution's own 1-sigma,
@@ -59,6 +62,7 @@ struct MotionInitResult {
   double tilt_sigma_deg = 0.0;
   double velocity_sigma_mps = 0.0;
   double median_error_px = 0.0;
+  double excitation_mps2 = 0.0;        // RMS gravity-free acceleration over the window [m/s^2]
   int landmarks = 0;
 };
 

@@ -40,8 +40,13 @@ struct SlidingWindowConfig {
   // Initialization. A rest window of 0.5 s suffices for the simulator's ~0.8 s of rest at the start.
   double static_window_s = 0.5;        // [s]
   // The IMU rest test alone accepts gentle motion (its thresholds allow a hovering multicopter's vibration), so rest
-  // also needs the features to stand still: mean bearing change between consecutive frames of common tracks [px].
+  // also needs the features to stand still over the static window: mean bearing change of common tracks from every
+  // frame of the last static_window_s, with the gyro's rotation removed (visual_rest.hpp) [px].
   double max_rest_feature_motion_px = 2.0;
+  // The gyro bias fitted to the bearings in that test: more than this is motion, not bias [rad/s]. Above MEMS gyro
+  // biases (consumer grade ~0.009 rad/s per axis; EuRoC's ADIS16448 0.08 rad/s); a sideways flight past a flat
+  // facade 20 m away at 3 m/s (0.15 rad/s) looks like such a turn, and only depth differences tell it from one.
+  double max_rest_gyro_bias_radps = 0.15;
   double init_timeout_s = 5.0;         // neither rest nor a motion initialization for this long -> reported [s]
   // In motion, the closed-form visual-inertial initialization (motion_init.hpp) starts the window instead.
   MotionInitConfig motion_init;
