@@ -30,8 +30,8 @@ while [[ $# -gt 0 ]]; do
       swap=${BASH_REMATCH[1]}; swap_after=${BASH_REMATCH[2]}; shift 2
       case "$swap" in
         tiles|registration) ;;
-        estimator|tracking|ingest) die "--swap $swap: only the edge's services are swapped in flight (a restarted" \
-          "estimator does not recover yet: README, \"The estimator killed and restarted\"; ingest is the run itself)" ;;
+        estimator|tracking|ingest) die "--swap $swap: only the edge's services are swapped in flight (a new estimator" \
+          "resumes from its checkpoint, which the drone's containers do not share yet; ingest is the run itself)" ;;
         *) die "--swap $swap: not a service of the demo (tiles or registration)" ;;
       esac ;;
     -*) die "unknown option $1 (usage: demo.sh [DATASET] [--features] [--out OUT] [--no-reference] [--keep-engine]" \

@@ -238,7 +238,7 @@ Reopened fly_wrong_heading(const SimRun& run, bool realign, double heading_error
   g.initial_pose_yaw_sigma_deg = 0.5;
   const auto& first = run.frames.front().truth;
   const Eigen::Matrix3d R0 = first.q_LB.toRotationMatrix();
-  InitialPose start{first.p_L, std::atan2(R0(1, 0), R0(0, 0)) * 180.0 / M_PI + heading_error_deg};
+  InitialPose start{first.p_L, std::atan2(R0(1, 0), R0(0, 0)) * 180.0 / M_PI + heading_error_deg, std::nullopt};
   GlobalFusion fusion(est, g, start);
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   information.diagonal() << Eigen::Vector3d::Constant(std::pow(180.0 / M_PI / 0.2, 2)), Eigen::Vector3d::Constant(100.0);
@@ -390,7 +390,7 @@ GatedFlight fly_with_faulty_registrations(const SimRun& run, bool send_faulty) {
   g.initial_pose_position_sigma_m = 0.5;
   const auto& first = run.frames.front().truth;
   const Eigen::Matrix3d R0 = first.q_LB.toRotationMatrix();
-  GlobalFusion fusion(est, g, InitialPose{first.p_L, std::atan2(R0(1, 0), R0(0, 0)) * 180.0 / M_PI});
+  GlobalFusion fusion(est, g, InitialPose{first.p_L, std::atan2(R0(1, 0), R0(0, 0)) * 180.0 / M_PI, std::nullopt});
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   information.diagonal() << Eigen::Vector3d::Constant(std::pow(180.0 / M_PI / 0.5, 2)), Eigen::Vector3d::Constant(25.0);
   GatedFlight out;

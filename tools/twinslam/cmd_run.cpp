@@ -141,9 +141,13 @@ int run_pipeline(const RunOptions& o) {
     if (view_geo) monitor.well_known().set_origin(origin_text(view_geo->origin));
   }
 
+  // An estimator restarted on failure resumes from its checkpoint in the run's folder (resume.hpp); one left by an
+  // earlier run there is not this flight's.
+  if (restartable.contains("estimator")) fs::remove(out / "estimator.checkpoint.json");
   const ServiceInputs inputs{dataset.root, twin_store, geo ? origin_text(geo->origin) : "",
                              view_geo ? origin_text(view_geo->origin) : "",
-                             fs::is_regular_file(truth) ? truth : fs::path()};
+                             fs::is_regular_file(truth) ? truth : fs::path(),
+                             restartable.contains("estimator") ? out / "estimator.checkpoint.json" : fs::path()};
   const std::vector<std::string> services = pipeline_services(o);
   process::Supervisor supervisor({out / "logs"});
   std::map<std::string, std::string> env{{"TWINSLAM_DOMAIN", std::to_string(domain)}};

@@ -25,6 +25,7 @@ std::vector<std::string> estimator_args(const RunOptions& o, const ServiceInputs
   } else if (geo) {
     args.push_back("--align-gnss");
   }
+  if (!in.estimator_checkpoint.empty()) args.insert(args.end(), {"--checkpoint", in.estimator_checkpoint.string()});
   return args;
 }
 }  // namespace

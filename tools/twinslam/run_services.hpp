@@ -16,6 +16,7 @@ struct ServiceInputs {
   std::string origin;                // W's origin "LAT,LON,ALT" for the estimator (twin and GNSS modes), else empty
   std::string view_origin;           // the same for the bridge's view (also when only the GNSS has one), else empty
   std::filesystem::path truth;       // the dataset's groundtruth.tum for the bridge, empty without one
+  std::filesystem::path estimator_checkpoint;  // the estimator's --checkpoint (when it restarts on failure), or empty
 };
 
 // The services of the run's pipeline in start order: [tracking,] estimator[, tiles, registration][, bridge].

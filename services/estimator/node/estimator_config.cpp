@@ -66,7 +66,17 @@ void bind_estimator_service_config(yaml::Fields& fields, EstimatorServiceConfig&
   fields.section("node")
       .milliseconds("imu_wait_ms", config.options.imu_wait)
       .number("lockstep_max_solver_time_s", config.lockstep_max_solver_time_s, "s")
-      .milliseconds("registration_wait_ms", config.options.registration_wait);
+      .milliseconds("registration_wait_ms", config.options.registration_wait)
+      .number("checkpoint_every_s", config.options.checkpoint_every_s, "s");
+  ResumeConfig& r = config.options.resume;
+  fields.section("resume")
+      .number("max_age_s", r.max_age_s, "s")
+      .number("max_accel_mps2", r.max_accel_mps2, "m/s^2")
+      .number("max_rate_degps", r.max_rate_degps, "deg/s")
+      .number("velocity_sigma_mps", r.velocity_sigma_mps, "m/s")
+      .number("tilt_sigma_deg", r.tilt_sigma_deg, "deg")
+      .number("gyro_bias_sigma_radps", r.gyro_bias_sigma_radps, "rad/s")
+      .number("accel_bias_sigma_mps2", r.accel_bias_sigma_mps2, "m/s^2");
   bind_fusion_fields(fields, config.options.fusion);
 }
 
@@ -92,6 +102,14 @@ EstimatorServiceConfig parse_estimator_service_config(const std::string& text, c
     c.options.fusion.validate();
   } catch (const InputError& e) {
     throw InputError(where(file, 0, std::string("estimator key 'fusion': ") + e.what()));
+  }
+  if (!(c.options.checkpoint_every_s > 0.0)) {
+    throw InputError(where(file, 0, "estimator key 'node.checkpoint_every_s': must be > 0"));
+  }
+  try {
+    c.options.resume.validate();
+  } catch (const InputError& e) {
+    throw InputError(where(file, 0, std::string("estimator key ") + e.what()));
   }
   if (!(c.lockstep_max_solver_time_s > 0.0)) {
     throw InputError(where(file, 0, "estimator key 'node.lockstep_max_solver_time_s': must be > 0"));

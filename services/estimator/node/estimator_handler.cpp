@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include <spdlog/spdlog.h>
 
@@ -29,7 +30,71 @@ EstimatorHandler::EstimatorHandler(dds::Counters& counters, const EstimatorNodeO
     : counters_(counters),
       estimator_(options.estimator),
       fusion_(estimator_, options.fusion, options.initial_pose),
-      enu_(options.origin ? std::make_unique<twin::EnuFrame>(*options.origin) : nullptr) {}
+      enu_(options.origin ? std::make_unique<twin::EnuFrame>(*options.origin) : nullptr),
+      options_(options) {
+  if (options_.checkpoint_path.empty()) return;
+  try {
+    checkpoint_ = read_checkpoint(options_.checkpoint_path);
+  } catch (const InputError& e) {
+    spdlog::warn("checkpoint not used: {}", e.what());  // a checkpoint is an aid: a broken one only costs the resume
+  }
+}
+
+void EstimatorHandler::resume_if_possible(std::int64_t frame_ns) {
+  if (!checkpoint_) return;
+  // The window's first keyframe needs IMU from its stamp on: a new process may see frames before its first sample.
+  if (first_imu_ns_ < 0 || frame_ns < first_imu_ns_) return;
+  if (estimator_.keyframe_count() > 0) {  // it started on its own (at rest) before IMU covered a frame
+    checkpoint_.reset();
+    return;
+  }
+  std::string why;
+  const auto plan = plan_resume(*checkpoint_, frame_ns, options_.resume, &why);
+  if (!plan) {
+    spdlog::info("checkpoint {} not used: {}", options_.checkpoint_path, why);
+    checkpoint_.reset();
+    return;
+  }
+  checkpoint_.reset();
+  estimator_.initialize_next_frame(plan->state_L, plan->sigmas);
+  fusion_.start_from(plan->pose_W);
+  counters_.add("resumed_from_checkpoint");
+  spdlog::info("resuming from checkpoint {} ({:.2f} s old): position sigma {:.2f} m, heading sigma {:.1f} deg",
+               options_.checkpoint_path, plan->age_s, plan->pose_W.sigmas->position_m,
+               plan->pose_W.sigmas->yaw_rad * 180.0 / M_PI);
+}
+
+void EstimatorHandler::write_checkpoint_if_due(const FrameEstimate& e) {
+  if (options_.checkpoint_path.empty() || e.status != EstimatorStatus::kTracking || !e.aligned ||
+      !fusion_.world_declared()) {
+    return;
+  }
+  if (checkpoint_written_ns_ >= 0 &&
+      1e-9 * static_cast<double>(e.stamp_ns - checkpoint_written_ns_) < options_.checkpoint_every_s) {
+    return;
+  }
+  EstimatorCheckpoint cp;
+  cp.stamp_ns = e.stamp_ns;
+  const Eigen::Isometry3d T_WB = e.T_WL * e.T_LB;
+  cp.p_W = T_WB.translation();
+  cp.q_WB = Eigen::Quaterniond(T_WB.linear());
+  cp.v_W = e.T_WL.linear() * e.v_L;
+  cp.bias = e.bias;
+  // Sigmas of the pose in W ([dp_W, dtheta_B]) when the window has them; the defaults otherwise.
+  if (const auto cov = estimator_.pose_covariance_world(e.stamp_ns)) {
+    cp.position_sigma_m = std::sqrt(cov->topLeftCorner<3, 3>().diagonal().maxCoeff());
+    cp.yaw_sigma_deg = std::sqrt(cov->bottomRightCorner<3, 3>().diagonal().maxCoeff()) * 180.0 / M_PI;
+  }
+  try {
+    write_checkpoint(options_.checkpoint_path, cp);
+    checkpoint_written_ns_ = e.stamp_ns;
+    counters_.add("checkpoints_written");
+  } catch (const std::exception& ex) {
+    counters_.add("checkpoints_failed");
+    spdlog::warn("{}", ex.what());
+    checkpoint_written_ns_ = e.stamp_ns;  // retried at the next interval, not on every frame
+  }
+}
 
 void EstimatorHandler::report_fusion() {
   // Heartbeat counters follow the fusion's own counts (added as deltas: Counters only adds).
@@ -136,6 +201,7 @@ EstimatorHandler::Output EstimatorHandler::handle(const msg::FeatureFrame& frame
     faults_.fetch_or(msg::ODOM_FAULT_FRAME_GAP);
   }
   for (const auto& s : new_imu) {
+    if (first_imu_ns_ < 0 || s.stamp_ns < first_imu_ns_) first_imu_ns_ = s.stamp_ns;
     try {
       estimator_.add_imu(s);
     } catch (const InputError& e) {
@@ -156,9 +222,11 @@ EstimatorHandler::Output EstimatorHandler::process(const msg::FeatureFrame& m) {
   }
   Output out;
   try {
+    resume_if_possible(m.stamp_ns());
     const FrameEstimate e = estimator_.add_frame(m.stamp_ns(), features);
     fusion_.after_frame(e, estimator_.local_map());
     report_fusion();
+    write_checkpoint_if_due(e);
     msg::Odometry odom;
     odom.vehicle_id(m.vehicle_id());
     odom.stamp_ns(m.stamp_ns());

@@ -16,6 +16,7 @@
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/estimator/frame_gap.hpp"
 #include "twinslam/estimator/global_fusion.hpp"
+#include "twinslam/estimator/resume.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
 #include "twinslam/twin/geo.hpp"
 
@@ -31,6 +32,11 @@ struct EstimatorNodeOptions {
   // it arrives (or this long passes), so when a registration is fused does not depend on the edge's speed.
   bool await_registration = false;
   std::chrono::milliseconds registration_wait{10000};
+  // --checkpoint FILE: the newest state in W written there every checkpoint_every_s of sensor time once the alignment
+  // is declared, and resumed from at start when fresh enough (resume.hpp). Empty: neither.
+  std::string checkpoint_path;
+  double checkpoint_every_s = 0.5;  // [s] of sensor time
+  ResumeConfig resume;
 };
 
 // A global measurement on its way to the worker thread, keyed by its sensor stamp (a Registration by the keyframe
@@ -58,6 +64,10 @@ class EstimatorHandler {
   // The ODOM_FAULT_* bits of one frame's estimate (IMU gap, too few features), counted on the heartbeat.
   std::uint32_t frame_faults(const FrameEstimate& e);
   void log_camera_calibration(std::int64_t stamp_ns);
+  // Before the first frame IMU covers: start from the checkpoint read at construction if it is fresh enough.
+  void resume_if_possible(std::int64_t frame_ns);
+  // After a frame: the checkpoint, once per checkpoint_every_s while the alignment is declared.
+  void write_checkpoint_if_due(const FrameEstimate& e);
 
   dds::Counters& counters_;
   SlidingWindowEstimator estimator_;
@@ -69,6 +79,10 @@ class EstimatorHandler {
   FrameGapDetector frame_gaps_;
   unsigned long long odom_seq_ = 0, map_seq_ = 0;
   std::int64_t calibration_logged_ns_ = 0;  // stamp of the last log line of the camera rotation calibration
+  EstimatorNodeOptions options_;
+  std::optional<EstimatorCheckpoint> checkpoint_;  // read at start, used (or not) at the first frame
+  std::int64_t first_imu_ns_ = -1;  // stamp of the first IMU sample this process got
+  std::int64_t checkpoint_written_ns_ = -1;
 };
 
 }  // namespace twinslam::estimator

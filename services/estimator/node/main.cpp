@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   // Global inputs (paper Sec. III-C/D). Without these the estimator is plain VIO and only counts them.
   bool fuse_registrations = false, align_gnss = false, fuse_gnss = false, fuse_gnss_loose = false,
        await_registration = false;
-  std::string origin, initial_pose;
+  std::string origin, initial_pose, checkpoint;
   app.add_flag("--fuse-registrations", fuse_registrations, "Fuse accepted map registrations (eq. 7 through T_WL)");
   app.add_flag("--align-gnss", align_gnss, "Find the initial alignment T_WL from GNSS fixes (eq. 11; needs --origin)");
   app.add_flag("--fuse-gnss", fuse_gnss, "Fuse GNSS fixes as window terms through T_WL once aligned (needs --origin)");
@@ -35,6 +35,8 @@ int main(int argc, char** argv) {
                "GNSS fixes in a pose graph apart from the VIO, which it leaves untouched (needs --align-gnss)");
   app.add_option("--origin", origin, "W's origin LAT,LON,ALT (deg, deg, m): GNSS fixes are converted to W with it");
   app.add_option("--initial-pose", initial_pose, "\"E N U YAW_DEG\": body pose in W at the first estimate (no GNSS)");
+  app.add_option("--checkpoint", checkpoint,
+                 "State file: written every node.checkpoint_every_s once aligned, resumed from at start if fresh");
   app.add_flag("--await-registration", await_registration,
                "Lockstep: hold the next frame until the registration answering each LocalMap arrives");
   return twinslam::dds::service_main("estimator", app, service, argc, argv, [&] {
@@ -55,6 +57,7 @@ int main(int argc, char** argv) {
     options.fusion.fuse_gnss = options.fusion.fuse_gnss || fuse_gnss;
     options.fusion.fuse_gnss_loose = options.fusion.fuse_gnss_loose || fuse_gnss_loose;
     options.await_registration = await_registration && !service.realtime;
+    if (!checkpoint.empty()) options.checkpoint_path = checkpoint;
     if (!origin.empty()) options.origin = twinslam::twin::parse_origin(origin);
     if ((options.fusion.align_from_gnss || options.fusion.fuse_gnss || options.fusion.fuse_gnss_loose) &&
         !options.origin) {

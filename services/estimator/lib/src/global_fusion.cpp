@@ -283,10 +283,11 @@ void GlobalFusion::after_frame(const FrameEstimate& estimate, const std::optiona
     Eigen::Isometry3d T_WL = Eigen::Isometry3d::Identity();
     T_WL.linear() = Eigen::AngleAxisd(initial_pose_->yaw_deg * kDegToRad - yaw_LB, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     T_WL.translation() = initial_pose_->p_W - T_WL.linear() * estimate.T_LB.translation();
-    estimator_.set_world_alignment(T_WL, {config_.initial_pose_position_sigma_m,
-                                          config_.initial_pose_yaw_sigma_deg * kDegToRad});
+    const WorldAlignmentSigmas sigmas = initial_pose_->sigmas.value_or(WorldAlignmentSigmas{
+        config_.initial_pose_position_sigma_m, config_.initial_pose_yaw_sigma_deg * kDegToRad});
+    estimator_.set_world_alignment(T_WL, sigmas);
     aligned_ = true;
-    declared_ = config_.initial_pose_yaw_sigma_deg <= config_.aligner.converged_yaw_sigma_deg;
+    declared_ = sigmas.yaw_rad / kDegToRad <= config_.aligner.converged_yaw_sigma_deg;
     accepted_at_provisional_ = counts_.registrations_accepted;
     last_accepted_ns_ = estimate.stamp_ns;
     ++counts_.alignments;

@@ -253,7 +253,10 @@ void SlidingWindowEstimator::add_imu(const ImuSample& sample) {
   s_->imu.push_back(sample);
 }
 
-void SlidingWindowEstimator::initialize_next_frame(const ImuState& state) { s_->pending_init = state; }
+void SlidingWindowEstimator::initialize_next_frame(const ImuState& state, const std::optional<StatePriorSigmas>& sigmas) {
+  s_->pending_init = state;
+  s_->pending_init_sigmas = sigmas;
+}
 
 void SlidingWindowEstimator::add_factor_provider(std::shared_ptr<WindowFactorProvider> provider) {
   s_->providers.push_back(std::move(provider));
@@ -297,7 +300,8 @@ FrameEstimate SlidingWindowEstimator::add_frame(std::int64_t stamp_ns, const std
     std::optional<ImuState> init = s.pending_init;
     s.pending_init.reset();
     const bool still = visually_still(s, stamp_ns, features);
-    StatePriorSigmas sigmas = static_init_prior_sigmas(s.config);
+    StatePriorSigmas sigmas = s.pending_init_sigmas.value_or(static_init_prior_sigmas(s.config));
+    s.pending_init_sigmas.reset();
     if (!init && still) {
       const auto end = std::upper_bound(s.imu.begin(), s.imu.end(), stamp_ns,
                                         [](std::int64_t t, const ImuSample& x) { return t < x.stamp_ns; });

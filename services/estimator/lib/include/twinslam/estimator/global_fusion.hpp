@@ -76,6 +76,8 @@ struct GlobalFusionConfig {
 struct InitialPose {
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
   double yaw_deg = 0.0;
+  // The pose's own prior sigmas (a resumed checkpoint, resume.hpp); without them the config's initial_pose_* ones.
+  std::optional<WorldAlignmentSigmas> sigmas;
 };
 
 struct GlobalFusionCounts {
@@ -92,6 +94,9 @@ class GlobalFusion {
  public:
   GlobalFusion(SlidingWindowEstimator& estimator, const GlobalFusionConfig& config,
                std::optional<InitialPose> initial_pose = std::nullopt);
+  // T_WL from this pose of the body at the first tracking frame from now on, as the constructor's initial_pose (a
+  // restarted estimator resuming from its checkpoint); ignored once aligned.
+  void start_from(const InitialPose& pose) { initial_pose_ = pose; }
 
   // A GNSS fix at `stamp_ns`: p_W with covariance (ENU) [m, m^2]. A fix after a jump is refused (gnss_jump.hpp,
   // counted in gnss_jump_counts()) and used for nothing.

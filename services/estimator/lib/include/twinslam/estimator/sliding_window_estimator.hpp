@@ -21,6 +21,7 @@
 #include <Eigen/Geometry>
 
 #include "twinslam/estimator/imu_state.hpp"
+#include "twinslam/estimator/state_prior.hpp"
 #include "twinslam/estimator/sliding_window_config.hpp"
 #include "twinslam/estimator/window_factor_provider.hpp"
 #include "twinslam/estimator/world_alignment.hpp"
@@ -74,9 +75,9 @@ class SlidingWindowEstimator {
   // should cover the stamp; if it does not, the last sample is held up to it.
   FrameEstimate add_frame(std::int64_t stamp_ns, const std::vector<FeatureBearing>& features);
 
-  // Starts the window at the next frame with `state` instead of waiting for rest (tests; a future motion-based or
-  // GNSS initializer). The prior of the first keyframe is the same as after static initialization.
-  void initialize_next_frame(const ImuState& state);
+  // Starts the window at the next frame with `state` instead of waiting for rest (tests; a resumed checkpoint,
+  // resume.hpp). The prior of the first keyframe has `sigmas`, by default those after a static initialization.
+  void initialize_next_frame(const ImuState& state, const std::optional<StatePriorSigmas>& sigmas = std::nullopt);
   void add_factor_provider(std::shared_ptr<WindowFactorProvider> provider);
 
   // Sets T_WL (its yaw and translation; L and W are gravity-aligned) with a prior of these sigmas, e.g. from the

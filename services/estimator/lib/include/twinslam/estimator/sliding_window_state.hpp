@@ -49,6 +49,7 @@ struct WindowState {
   bool initialized = false;
   EstimatorStatus idle_status = EstimatorStatus::kInitializing;
   std::optional<ImuState> pending_init;
+  std::optional<StatePriorSigmas> pending_init_sigmas;  // of pending_init (default: static_init_prior_sigmas)
   std::deque<MotionInitFrame> rest_frames;    // while initializing: the frames of the last static_window_s (stillness)
   std::deque<MotionInitFrame> init_frames;    // while initializing: the last motion_init.window_s of frames
   std::int64_t first_frame_ns = -1;           // first frame seen since the last (re)start
