@@ -67,6 +67,8 @@ void bind_estimator_service_config(yaml::Fields& fields, EstimatorServiceConfig&
       .milliseconds("imu_wait_ms", config.options.imu_wait)
       .number("lockstep_max_solver_time_s", config.lockstep_max_solver_time_s, "s")
       .milliseconds("registration_wait_ms", config.options.registration_wait)
+      .milliseconds("registration_link_wait_ms", config.options.registration_link_wait)
+      .integer("registration_give_up_after", config.options.registration_give_up_after)
       .number("checkpoint_every_s", config.options.checkpoint_every_s, "s");
   ResumeConfig& r = config.options.resume;
   fields.section("resume")
@@ -102,6 +104,9 @@ EstimatorServiceConfig parse_estimator_service_config(const std::string& text, c
     c.options.fusion.validate();
   } catch (const InputError& e) {
     throw InputError(where(file, 0, std::string("estimator key 'fusion': ") + e.what()));
+  }
+  if (c.options.registration_give_up_after < 1) {
+    throw InputError(where(file, 0, "estimator key 'node.registration_give_up_after': must be >= 1"));
   }
   if (!(c.options.checkpoint_every_s > 0.0)) {
     throw InputError(where(file, 0, "estimator key 'node.checkpoint_every_s': must be > 0"));

@@ -32,6 +32,11 @@ struct EstimatorNodeOptions {
   // it arrives (or this long passes), so when a registration is fused does not depend on the edge's speed.
   bool await_registration = false;
   std::chrono::milliseconds registration_wait{10000};
+  // At start the estimator announces ready only once the registration can answer (or this long passed): frames are
+  // never held for a service that cannot hear the LocalMaps. After this many waits in a row run out, frames stop
+  // waiting until a registration arrives again: a hung edge costs a few waits, not registration_wait per keyframe.
+  std::chrono::milliseconds registration_link_wait{30000};
+  int registration_give_up_after = 3;
   // --checkpoint FILE: the newest state in W written there every checkpoint_every_s of sensor time once the alignment
   // is declared, and resumed from at start when fresh enough (resume.hpp). Empty: neither.
   std::string checkpoint_path;

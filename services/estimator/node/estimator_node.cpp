@@ -1,5 +1,10 @@
 #include "estimator_node.hpp"
 
+#include <spdlog/spdlog.h>
+
+#include <thread>
+
+#include "twinslam/core/shutdown.hpp"
 #include "twinslam/dds/convert.hpp"
 
 namespace twinslam::estimator {
@@ -10,6 +15,7 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
       handler_(counters, options),
       await_registration_(options.await_registration),
       registration_wait_(options.registration_wait),
+      registration_wait_policy_(options.registration_give_up_after),
       odometry_(node.writer<msg::Odometry>(dds::topics::kOdometry)),
       local_map_(node.writer<msg::LocalMap>(dds::topics::kLocalMap)),
       ack_(node.writer<msg::FrameAck>(dds::topics::kFrameAck)),
@@ -30,10 +36,12 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
     counters_.add("features_in");
     worker_.push_frame(std::make_shared<const msg::FeatureFrame>(m), m.stamp_ns());
   });
-  node.subscribe<msg::Registration>(dds::topics::kRegistration, [this](const msg::Registration& m) {
-    if (m.vehicle_id() != node_.config().vehicle_id) return;
-    worker_.push_side(m.keyframe_stamp_ns(), m);
-  });
+  registration_status_ =
+      &node.subscribe<msg::Registration>(dds::topics::kRegistration, [this](const msg::Registration& m) {
+        if (m.vehicle_id() != node_.config().vehicle_id) return;
+        registrations_in_.fetch_add(1);
+        worker_.push_side(m.keyframe_stamp_ns(), m);
+      });
   node.subscribe<msg::GnssFix>(dds::topics::kGnss, [this](const msg::GnssFix& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     worker_.push_side(m.stamp_ns(), m);
@@ -43,16 +51,40 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
 void EstimatorNode::handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu,
                            std::vector<GlobalInput>&& global) {
   const EstimatorHandler::Output out = handler_.handle(frame, std::move(new_imu), std::move(global));
+  const bool await = should_await_registration();  // also counts the waits that ran out, on every frame
   if (out.odometry) odometry_.publish(*out.odometry);
   if (out.local_map) {
     local_map_.publish(*out.local_map);
-    if (await_registration_) worker_.expect_side(out.local_map->keyframe_stamp_ns(), registration_wait_);
-  }
-  if (const unsigned long long timeouts = worker_.expectations_timed_out(); timeouts > wait_timeouts_reported_) {
-    counters_.add("registration_wait_timeouts", timeouts - wait_timeouts_reported_);
-    wait_timeouts_reported_ = timeouts;
+    if (await) worker_.expect_side(out.local_map->keyframe_stamp_ns(), registration_wait_);
   }
   ack_.publish(dds::frame_ack(frame.vehicle_id(), "estimator", frame.stamp_ns(), frame.seq()));
+}
+
+bool EstimatorNode::should_await_registration() {
+  if (!await_registration_) return false;
+  const RegistrationWait::Update u = registration_wait_policy_.observe(worker_.expectations_timed_out(),
+                                                                       registrations_in_.load());
+  if (u.timed_out > 0) counters_.add("registration_wait_timeouts", u.timed_out);
+  if (u.gave_up) {
+    counters_.add("registration_wait_suspended");
+    spdlog::warn("the registration did not answer the last LocalMaps in time: frames no longer wait for it until a "
+                 "registration arrives");
+  }
+  return registration_wait_policy_.should_wait(registration_link_up());
+}
+
+bool EstimatorNode::registration_link_up() const {
+  // registration_status_ is set in the constructor after the frame reader, which may already deliver a frame.
+  const dds::ReaderStatus* status = registration_status_;
+  return status != nullptr && status->matched_writers.load() > 0 && local_map_.matched_readers() > 0;
+}
+
+bool EstimatorNode::wait_for_registration_link(std::chrono::milliseconds timeout) const {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!registration_link_up() && !shutdown_requested() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return registration_link_up();
 }
 
 }  // namespace twinslam::estimator

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "estimator_handler.hpp"
+#include "registration_wait.hpp"
 #include "twinslam/core/sensor_worker.hpp"
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/dds/node.hpp"
@@ -27,15 +28,26 @@ class EstimatorNode {
  public:
   EstimatorNode(dds::Node& node, dds::Counters& counters, EstimatorNodeOptions options);
 
+  // True once a registration service can answer: the LocalMap writer has a matched reader and the Registration reader
+  // a matched writer. Under DDS-Security each pair of processes authenticates on its own, so the run seeing every
+  // service ready does not mean the estimator and the registration see each other yet.
+  bool registration_link_up() const;
+  // Blocks until registration_link_up() or `timeout` passes (or shutdown); returns registration_link_up().
+  bool wait_for_registration_link(std::chrono::milliseconds timeout) const;
+
  private:
   void handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu, std::vector<GlobalInput>&& global);
+  // Whether this keyframe's LocalMap holds the next frames for its registration (worker thread).
+  bool should_await_registration();
 
   dds::Node& node_;
   dds::Counters& counters_;
   EstimatorHandler handler_;  // the worker thread's (note_fault from any thread)
   bool await_registration_;
   std::chrono::milliseconds registration_wait_;
-  unsigned long long wait_timeouts_reported_ = 0;  // worker thread only
+  RegistrationWait registration_wait_policy_;  // worker thread only
+  std::atomic<unsigned long long> registrations_in_{0};  // counted on the reader's thread
+  std::atomic<const dds::ReaderStatus*> registration_status_{nullptr};
   dds::Writer<msg::Odometry> odometry_;
   dds::Writer<msg::LocalMap> local_map_;
   dds::Writer<msg::FrameAck> ack_;

@@ -81,6 +81,10 @@ int main(int argc, char** argv) {
     twinslam::dds::Counters counters;
     twinslam::dds::HeartbeatPublisher heartbeat(node, counters);
     est::EstimatorNode estimator(node, counters, options);
+    if (options.await_registration && !estimator.wait_for_registration_link(options.registration_link_wait)) {
+      spdlog::warn("no registration service matched within {} ms: frames will not wait for registrations until one is",
+                   options.registration_link_wait.count());
+    }
     return twinslam::dds::serve_until_shutdown(heartbeat, node);
   });
 }
