@@ -59,6 +59,8 @@ TEST(Resume, CheckpointFileRoundTripsAndABrokenOneIsNamed) {
   const std::pair<std::string, std::string> broken[] = {
       {"{not json", "not a JSON object"},
       {R"({"p_W":[1,2,3]})", "'stamp_ns'"},
+      {R"({"stamp_ns":-5,"p_W":[1,2,3]})", "'stamp_ns'"},
+      {R"({"stamp_ns":18446744073709551615,"p_W":[1,2,3]})", "'stamp_ns'"},  // would wrap to -1
       {R"({"stamp_ns":5,"p_W":[1,null,3]})", "'p_W'"},
       {R"({"stamp_ns":5,"p_W":[1,2,3],"q_WB_wxyz":[1,1,0,0]})", "unit quaternion"},
       {R"({"stamp_ns":5,"p_W":[1,2,3],"q_WB_wxyz":[1,0,0,0],"v_W":[1,2]})", "'v_W'"},

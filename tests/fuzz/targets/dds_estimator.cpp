@@ -31,7 +31,7 @@ est::EstimatorNodeOptions options() {
   est::EstimatorNodeOptions o;
   o.fusion.fuse_registrations = true;
   o.fusion.align_from_gnss = true;
-  o.initial_pose = est::InitialPose{Eigen::Vector3d(0, 0, 2), 0.0};
+  o.initial_pose = est::InitialPose{Eigen::Vector3d(0, 0, 2), 0.0, std::nullopt};
   o.origin = twinslam::twin::GeoOrigin{47.3769, 8.5417, 408.0};
   return o;
 }

@@ -18,25 +18,28 @@ double yaw_of(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
 
 nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-// A finite number array of length n under `key`, or InputError naming the file and the key.
-Eigen::VectorXd numbers(const nlohmann::json& j, const char* key, int n, const std::string& file) {
+// An array of n numbers under `key`, each within +-limit, or InputError naming the file and the key. The limits are
+// far beyond any flight's (W is a city's local frame) and keep the state carried over the gap finite.
+Eigen::VectorXd numbers(const nlohmann::json& j, const char* key, int n, double limit, const std::string& file) {
   if (!j.contains(key) || !j[key].is_array() || static_cast<int>(j[key].size()) != n) {
     throw InputError(where(file, 0, std::string("'") + key + "' must be an array of " + std::to_string(n) + " numbers"));
   }
   Eigen::VectorXd out(n);
   for (int i = 0; i < n; ++i) {
     const auto& x = j[key][static_cast<std::size_t>(i)];
-    if (!x.is_number() || !std::isfinite(x.get<double>())) {
-      throw InputError(where(file, 0, std::string("'") + key + "' holds a value that is not a finite number"));
+    if (!x.is_number() || !(std::abs(x.get<double>()) <= limit)) {
+      throw InputError(where(file, 0, std::string("'") + key + "' holds a value that is not a number within +-" +
+                                          std::to_string(limit)));
     }
     out(i) = x.get<double>();
   }
   return out;
 }
 
-double number(const nlohmann::json& j, const char* key, const std::string& file) {
-  if (!j.contains(key) || !j[key].is_number() || !std::isfinite(j[key].get<double>()) || j[key].get<double>() < 0) {
-    throw InputError(where(file, 0, std::string("'") + key + "' must be a finite number >= 0"));
+// A sigma: a number in (0, limit] (a zero sigma would be an infinitely certain prior).
+double sigma(const nlohmann::json& j, const char* key, double limit, const std::string& file) {
+  if (!j.contains(key) || !j[key].is_number() || !(j[key].get<double>() > 0) || !(j[key].get<double>() <= limit)) {
+    throw InputError(where(file, 0, std::string("'") + key + "' must be a number in (0, " + std::to_string(limit) + "]"));
   }
   return j[key].get<double>();
 }
@@ -58,7 +61,8 @@ void ResumeConfig::validate() const {
 
 std::optional<ResumePlan> plan_resume(const EstimatorCheckpoint& cp, std::int64_t frame_ns, const ResumeConfig& c,
                                       std::string* why) {
-  const double dt = 1e-9 * static_cast<double>(frame_ns - cp.stamp_ns);
+  // In double: the int64 difference of two arbitrary stamps can overflow (the checkpoint file is outside input).
+  const double dt = 1e-9 * (static_cast<double>(frame_ns) - static_cast<double>(cp.stamp_ns));
   if (dt < 0.0 || dt > c.max_age_s) {
     if (why) {
       *why = dt < 0.0 ? "the checkpoint is " + std::to_string(-dt) + " s after the first frame"
@@ -120,20 +124,23 @@ std::optional<EstimatorCheckpoint> read_checkpoint(const std::filesystem::path& 
   text << in.rdbuf();
   const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw InputError(where(file, 0, "not a JSON object (an estimator checkpoint)"));
-  if (!j.contains("stamp_ns") || !j["stamp_ns"].is_number_integer()) {
-    throw InputError(where(file, 0, "'stamp_ns' must be an integer [ns]"));
+  // Sensor stamps are >= 0 and fit int64 (a larger unsigned value would wrap to a negative stamp).
+  if (!j.contains("stamp_ns") || !j["stamp_ns"].is_number_integer() ||
+      (j["stamp_ns"].is_number_unsigned() ? j["stamp_ns"].get<std::uint64_t>() > std::uint64_t{INT64_MAX}
+                                          : j["stamp_ns"].get<std::int64_t>() < 0)) {
+    throw InputError(where(file, 0, "'stamp_ns' must be an integer in [0, 2^63) [ns]"));
   }
   EstimatorCheckpoint cp;
   cp.stamp_ns = j["stamp_ns"].get<std::int64_t>();
-  cp.p_W = numbers(j, "p_W", 3, file);
-  const Eigen::VectorXd q = numbers(j, "q_WB_wxyz", 4, file);
+  cp.p_W = numbers(j, "p_W", 3, 1e7, file);                  // [m]
+  const Eigen::VectorXd q = numbers(j, "q_WB_wxyz", 4, 2.0, file);
   if (std::abs(q.norm() - 1.0) > 1e-3) throw InputError(where(file, 0, "'q_WB_wxyz' is not a unit quaternion"));
   cp.q_WB = Eigen::Quaterniond(q(0), q(1), q(2), q(3)).normalized();
-  cp.v_W = numbers(j, "v_W", 3, file);
-  cp.bias.gyro = numbers(j, "gyro_bias", 3, file);
-  cp.bias.accel = numbers(j, "accel_bias", 3, file);
-  cp.position_sigma_m = number(j, "position_sigma_m", file);
-  cp.yaw_sigma_deg = number(j, "yaw_sigma_deg", file);
+  cp.v_W = numbers(j, "v_W", 3, 1e3, file);                  // [m/s]
+  cp.bias.gyro = numbers(j, "gyro_bias", 3, 10.0, file);      // [rad/s]
+  cp.bias.accel = numbers(j, "accel_bias", 3, 100.0, file);   // [m/s^2]
+  cp.position_sigma_m = sigma(j, "position_sigma_m", 1e6, file);
+  cp.yaw_sigma_deg = sigma(j, "yaw_sigma_deg", 360.0, file);
   return cp;
 }
 
