@@ -263,7 +263,7 @@ TEST(SlidingWindow, StaticStartInitializesAndHoldsStill) {
   rest.roll = testing::Sinusoid{0.1, 0.0, 0.0, 1.0, 0.0};
   // 0.1 px: a KLT tracker on a still image jitters far less than the simulator's default 0.5 px.
   SimRun run = testing::make_sim_run(6.0, 0.1, 18, 2000, 460.0, rest);
-  for (const Eigen::Vector3d extra_gyro_bias : {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(-0.002, 0.021, 0.077)}) {
+  for (const Eigen::Vector3d& extra_gyro_bias : {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(-0.002, 0.021, 0.077)}) {
     for (auto& x : run.imu) x.gyro_B += extra_gyro_bias;
     SlidingWindowEstimator est(sim_config(run, 0.1));
     std::size_t imu_next = 0;

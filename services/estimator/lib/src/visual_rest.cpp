@@ -1,8 +1,9 @@
 // Visual rest test (visual_rest.hpp). Why over the window and not only frame to frame: in steady flight past distant
 // facades consecutive frames move less than 2 px while the IMU feels only gravity, and a static initialization there
 // takes 3 m/s for 0 (issue 14: an estimator restarted in flight); over 0.5 s the same flight moves tens of pixels.
-// Why de-rotated over the window (frame to frame, a rotation still counts as motion): a drone that starts to accelerate tilts first (0.4 deg, 3 px at 460 px focal, while it has moved
-// 1 mm) and a static initialization there is right. The rotation comes from the gyroscope, whose unknown bias (0.5
+// Why de-rotated over the window (frame to frame, a rotation still counts as motion): a drone that starts to
+// accelerate tilts first (0.4 deg, 3 px at 460 px focal, while it has moved 1 mm) and a static initialization there
+// is right. The rotation comes from the gyroscope, whose unknown bias (0.5
 // deg/s per axis for a consumer-grade IMU: 2 px over the window) is fitted to the bearings along with it; a fitted bias
 // beyond max_rest_gyro_bias_radps is motion, not bias (steady flight past a facade looks like a turn the gyro did not
 // feel), so it is not rest either.
@@ -22,7 +23,11 @@ namespace {
 Eigen::Matrix3d gyro_rotation(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1,
                               const Eigen::Vector3d& bias) {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  for (std::size_t i = 0; i + 1 < imu.size(); ++i) {
+  // The buffer is in stamp order: start at the sample holding t0 rather than scanning all of it per residual.
+  const auto after = std::upper_bound(imu.begin(), imu.end(), t0,
+                                      [](std::int64_t t, const ImuSample& x) { return t < x.stamp_ns; });
+  for (auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(after - imu.begin() - 1, 0));
+       i + 1 < imu.size() && imu[i].stamp_ns < t1; ++i) {
     const std::int64_t a = std::max(imu[i].stamp_ns, t0), b = std::min(imu[i + 1].stamp_ns, t1);
     if (b <= a) continue;
     const Eigen::Vector3d phi = (imu[i].gyro_B - bias) * 1e-9 * static_cast<double>(b - a);
