@@ -81,7 +81,7 @@ void EstimatorHandler::write_checkpoint_if_due(const FrameEstimate& e) {
   cp.v_W = e.T_WL.linear() * e.v_L;
   cp.bias = e.bias;
   // Sigmas of the pose in W ([dp_W, dtheta_B]) when the window has them; the defaults otherwise.
-  if (const auto cov = estimator_.pose_covariance_world(e.stamp_ns)) {
+  if (const auto cov = estimator_.pose_covariance_world(e.stamp_ns); cov && cov->allFinite()) {
     // Within what read_checkpoint accepts (a sigma in (0, 1e6] m and (0, 360] deg).
     cp.position_sigma_m = std::clamp(std::sqrt(cov->topLeftCorner<3, 3>().diagonal().maxCoeff()), 1e-4, 1e6);
     cp.yaw_sigma_deg = std::clamp(std::sqrt(cov->bottomRightCorner<3, 3>().diagonal().maxCoeff()) * 180.0 / M_PI,
