@@ -31,17 +31,18 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
       handler_.note_fault(msg::ODOM_FAULT_IMU_REJECTED);
     }
   });
-  node.subscribe<msg::FeatureFrame>(dds::topics::kFeatures, [this](const msg::FeatureFrame& m) {
-    if (m.vehicle_id() != node_.config().vehicle_id) return;
-    counters_.add("features_in");
-    worker_.push_frame(std::make_shared<const msg::FeatureFrame>(m), m.stamp_ns());
-  });
+  // Before the frame reader: handle() (on a frame) reads registration_status_.
   registration_status_ =
       &node.subscribe<msg::Registration>(dds::topics::kRegistration, [this](const msg::Registration& m) {
         if (m.vehicle_id() != node_.config().vehicle_id) return;
         registrations_in_.fetch_add(1);
         worker_.push_side(m.keyframe_stamp_ns(), m);
       });
+  node.subscribe<msg::FeatureFrame>(dds::topics::kFeatures, [this](const msg::FeatureFrame& m) {
+    if (m.vehicle_id() != node_.config().vehicle_id) return;
+    counters_.add("features_in");
+    worker_.push_frame(std::make_shared<const msg::FeatureFrame>(m), m.stamp_ns());
+  });
   node.subscribe<msg::GnssFix>(dds::topics::kGnss, [this](const msg::GnssFix& m) {
     if (m.vehicle_id() != node_.config().vehicle_id) return;
     worker_.push_side(m.stamp_ns(), m);
@@ -51,17 +52,19 @@ EstimatorNode::EstimatorNode(dds::Node& node, dds::Counters& counters, Estimator
 void EstimatorNode::handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu,
                            std::vector<GlobalInput>&& global) {
   const EstimatorHandler::Output out = handler_.handle(frame, std::move(new_imu), std::move(global));
-  const bool await = should_await_registration();  // also counts the waits that ran out, on every frame
+  if (await_registration_) count_registration_waits();
   if (out.odometry) odometry_.publish(*out.odometry);
   if (out.local_map) {
     local_map_.publish(*out.local_map);
-    if (await) worker_.expect_side(out.local_map->keyframe_stamp_ns(), registration_wait_);
+    // The link is queried only here, once per keyframe: it asks Fast DDS for the matched endpoints.
+    if (await_registration_ && registration_wait_policy_.should_wait(registration_link_up())) {
+      worker_.expect_side(out.local_map->keyframe_stamp_ns(), registration_wait_);
+    }
   }
   ack_.publish(dds::frame_ack(frame.vehicle_id(), "estimator", frame.stamp_ns(), frame.seq()));
 }
 
-bool EstimatorNode::should_await_registration() {
-  if (!await_registration_) return false;
+void EstimatorNode::count_registration_waits() {
   const RegistrationWait::Update u = registration_wait_policy_.observe(worker_.expectations_timed_out(),
                                                                        registrations_in_.load());
   if (u.timed_out > 0) counters_.add("registration_wait_timeouts", u.timed_out);
@@ -70,13 +73,10 @@ bool EstimatorNode::should_await_registration() {
     spdlog::warn("the registration did not answer the last LocalMaps in time: frames no longer wait for it until a "
                  "registration arrives");
   }
-  return registration_wait_policy_.should_wait(registration_link_up());
 }
 
 bool EstimatorNode::registration_link_up() const {
-  // registration_status_ is set in the constructor after the frame reader, which may already deliver a frame.
-  const dds::ReaderStatus* status = registration_status_;
-  return status != nullptr && status->matched_writers.load() > 0 && local_map_.matched_readers() > 0;
+  return registration_status_->matched_writers.load() > 0 && local_map_.matched_readers() > 0;
 }
 
 bool EstimatorNode::wait_for_registration_link(std::chrono::milliseconds timeout) const {

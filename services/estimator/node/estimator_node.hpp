@@ -37,8 +37,8 @@ class EstimatorNode {
 
  private:
   void handle(const msg::FeatureFrame& frame, std::vector<ImuSample>&& new_imu, std::vector<GlobalInput>&& global);
-  // Whether this keyframe's LocalMap holds the next frames for its registration (worker thread).
-  bool should_await_registration();
+  // Per frame (worker thread): counts the waits for a registration that ran out, and says when it gives up waiting.
+  void count_registration_waits();
 
   dds::Node& node_;
   dds::Counters& counters_;
@@ -47,7 +47,7 @@ class EstimatorNode {
   std::chrono::milliseconds registration_wait_;
   RegistrationWait registration_wait_policy_;  // worker thread only
   std::atomic<unsigned long long> registrations_in_{0};  // counted on the reader's thread
-  std::atomic<const dds::ReaderStatus*> registration_status_{nullptr};
+  const dds::ReaderStatus* registration_status_ = nullptr;  // set before frames can arrive
   dds::Writer<msg::Odometry> odometry_;
   dds::Writer<msg::LocalMap> local_map_;
   dds::Writer<msg::FrameAck> ack_;

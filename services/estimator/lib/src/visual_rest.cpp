@@ -3,10 +3,9 @@
 // takes 3 m/s for 0 (issue 14: an estimator restarted in flight); over 0.5 s the same flight moves tens of pixels.
 // Why de-rotated over the window (frame to frame, a rotation still counts as motion): a drone that starts to
 // accelerate tilts first (0.4 deg, 3 px at 460 px focal, while it has moved 1 mm) and a static initialization there
-// is right. The rotation comes from the gyroscope, whose unknown bias (0.5
-// deg/s per axis for a consumer-grade IMU: 2 px over the window) is fitted to the bearings along with it; a fitted bias
-// beyond max_rest_gyro_bias_radps is motion, not bias (steady flight past a facade looks like a turn the gyro did not
-// feel), so it is not rest either.
+// is right. The rotation comes from the gyroscope, whose unknown bias (0.5 deg/s per axis for a consumer-grade IMU:
+// 2 px over the window) is fitted to the bearings along with it; a fitted bias beyond max_rest_gyro_bias_radps is
+// motion, not bias (steady flight past a facade looks like a turn the gyro did not feel), so it is not rest either.
 #include "visual_rest.hpp"
 
 #include <algorithm>
