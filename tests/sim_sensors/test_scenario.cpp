@@ -2,6 +2,10 @@
 // built-ins valid, YAML echo reads back to the same scenario.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "twinslam/core/error.hpp"
 #include "twinslam/sim/scenario_io.hpp"
 
@@ -178,7 +182,8 @@ TEST(SimScenario, YamlEchoReadsBackIdentically) {
 // Imperfect sensors (issue 13): realistic by default, all off in `tiny`, read, range-checked and echoed.
 TEST(SimScenario, ImperfectSensorKeys) {
   const Scenario s = parse_scenario_yaml(R"(
-camera: {time_offset_s: -0.02, extrinsic_error_deg: 1.5, extrinsic_error_m: 0.03, auto_exposure_tau_s: 0}
+camera: {time_offset_s: -0.02, extrinsic_error_deg: 1.5, extrinsic_error_m: 0.03, auto_exposure_tau_s: 0,
+         intrinsic_error_focal: 0.004, intrinsic_error_px: 0, intrinsic_error_k1: 0.001}
 imu: {gyro_turn_on_bias: 0.01, accel_turn_on_bias: 0.2, gyro_bias_instability: 1e-4, accel_bias_instability: 2e-3,
       bias_tau_s: 0, gyro_scale_error: 0.01, accel_scale_error: 0, gyro_misalignment: 0.002, accel_misalignment: 0.003}
 )",
@@ -187,6 +192,9 @@ imu: {gyro_turn_on_bias: 0.01, accel_turn_on_bias: 0.2, gyro_bias_instability: 1
   EXPECT_DOUBLE_EQ(s.camera.extrinsic_error_deg, 1.5);
   EXPECT_DOUBLE_EQ(s.camera.extrinsic_error_m, 0.03);
   EXPECT_EQ(s.camera.auto_exposure_tau_s, 0);
+  EXPECT_DOUBLE_EQ(s.camera.intrinsic_error_focal, 0.004);
+  EXPECT_EQ(s.camera.intrinsic_error_px, 0);
+  EXPECT_DOUBLE_EQ(s.camera.intrinsic_error_k1, 0.001);
   EXPECT_DOUBLE_EQ(s.imu.gyro_turn_on_bias, 0.01);
   EXPECT_DOUBLE_EQ(s.imu.accel_turn_on_bias, 0.2);
   EXPECT_DOUBLE_EQ(s.imu.gyro_bias_instability, 1e-4);
@@ -203,11 +211,17 @@ imu: {gyro_turn_on_bias: 0.01, accel_turn_on_bias: 0.2, gyro_bias_instability: 1
   EXPECT_GT(loops.camera.extrinsic_error_deg, 0);
   EXPECT_GT(loops.camera.extrinsic_error_m, 0);
   EXPECT_GT(loops.camera.auto_exposure_tau_s, 0);
+  EXPECT_GT(loops.camera.intrinsic_error_focal, 0);
+  EXPECT_GT(loops.camera.intrinsic_error_px, 0);
+  EXPECT_GT(loops.camera.intrinsic_error_k1, 0);
   EXPECT_GT(loops.imu.gyro_turn_on_bias, 0);
   EXPECT_EQ(tiny.camera.time_offset_s, 0);
   EXPECT_EQ(tiny.camera.extrinsic_error_deg, 0);
   EXPECT_EQ(tiny.camera.extrinsic_error_m, 0);
   EXPECT_EQ(tiny.camera.auto_exposure_tau_s, 0);
+  EXPECT_EQ(tiny.camera.intrinsic_error_focal, 0);
+  EXPECT_EQ(tiny.camera.intrinsic_error_px, 0);
+  EXPECT_EQ(tiny.camera.intrinsic_error_k1, 0);
   for (const double v : {tiny.imu.gyro_turn_on_bias, tiny.imu.accel_turn_on_bias, tiny.imu.gyro_bias_instability,
                          tiny.imu.accel_bias_instability, tiny.imu.bias_tau_s, tiny.imu.gyro_scale_error,
                          tiny.imu.accel_scale_error, tiny.imu.gyro_misalignment, tiny.imu.accel_misalignment})
@@ -235,6 +249,15 @@ imu: {gyro_turn_on_bias: 0.01, accel_turn_on_bias: 0.2, gyro_bias_instability: 1
         << negative;
     const std::string nan = error_of(std::string("imu: {") + key + ": nan}\n");
     EXPECT_NE(nan.find(std::string("scen.yaml:1: imu.") + key + ": must be finite"), std::string::npos) << nan;
+  }
+  for (const auto& [key, range] : std::vector<std::pair<std::string, std::string>>{
+           {"intrinsic_error_focal", "[0, 0.05]"}, {"intrinsic_error_px", "[0, 20] px"},
+           {"intrinsic_error_k1", "[0, 0.05]"}}) {
+    for (const char* bad : {"-1e-3", "0.5e2"})
+      EXPECT_NE(error_of("camera: {" + key + ": " + bad + "}\n").find("scen.yaml:1: camera." + key + ": must be in " + range),
+                std::string::npos)
+          << key << bad;
+    EXPECT_NE(error_of("camera: {" + key + ": nan}\n").find("camera." + key + ": must be finite"), std::string::npos);
   }
   EXPECT_NE(error_of("camera: {time_ofset_s: 0}\n").find("camera.time_ofset_s: unknown key"), std::string::npos);
 }

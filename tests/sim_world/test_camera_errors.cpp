@@ -1,11 +1,13 @@
-// Imperfect camera (issue 13): the camera-IMU time offset, the extrinsic calibration error and auto-exposure each show
-// in a simulated dataset as configured, and each key set to 0 gives the ideal output.
+// Imperfect camera (issue 13): the camera-IMU time offset, the extrinsic and intrinsic calibration errors and
+// auto-exposure each show in a simulated dataset as configured, and each key set to 0 gives the ideal output.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -73,6 +75,56 @@ TEST(SimCameraErrors, CalibratedExtrinsicsDifferByExactlyTheConfiguredError) {
   EXPECT_EQ(calibrated_T_BC(tiny).matrix(), camera_T_BC(tiny).matrix());
 }
 
+TEST(SimCameraErrors, CalibratedIntrinsicsDifferByExactlyTheConfiguredError) {
+  Scenario s = builtin_scenario("city-loops");
+  std::set<int> focal_signs, k1_signs;
+  std::vector<Eigen::Vector2d> directions;
+  for (const std::uint64_t seed : {1u, 2u, 3u, 7u, 99u}) {
+    for (const double focal : {0.001, 0.01}) {
+      s.seed = seed;
+      s.camera.intrinsic_error_focal = focal;
+      s.camera.intrinsic_error_px = 2.5;
+      s.camera.intrinsic_error_k1 = 0.004;
+      const CameraIntrinsicErrors e = camera_intrinsic_errors(s);
+      EXPECT_NEAR(std::abs(e.focal_scale - 1.0), focal, 1e-15);
+      EXPECT_NEAR(e.principal_point_shift_px.norm(), 2.5, 1e-12);
+      EXPECT_NEAR(std::abs(e.k1_offset), 0.004, 1e-15);
+      focal_signs.insert(e.focal_scale > 1 ? 1 : -1);
+      k1_signs.insert(e.k1_offset > 0 ? 1 : -1);
+      EXPECT_EQ(e.focal_scale > 1, e.k1_offset > 0);  // one sign: the radial errors add off-axis
+      if (focal == 0.01) directions.push_back(e.principal_point_shift_px.normalized());
+      // The stated calibration: the true intrinsics changed by exactly these errors, the stated extrinsics.
+      const CameraIntrinsics truth = sim_camera_config(s).intrinsics;
+      const CameraConfig stated = calibrated_sim_camera_config(s);
+      EXPECT_NEAR(stated.intrinsics.fu / truth.fu, e.focal_scale, 1e-14);
+      EXPECT_NEAR(stated.intrinsics.fv / truth.fv, e.focal_scale, 1e-14);
+      EXPECT_NEAR(stated.intrinsics.cu - truth.cu, e.principal_point_shift_px.x(), 1e-12);
+      EXPECT_NEAR(stated.intrinsics.cv - truth.cv, e.principal_point_shift_px.y(), 1e-12);
+      EXPECT_NEAR(stated.intrinsics.coefficients[0] - truth.coefficients[0], e.k1_offset, 1e-15);
+      EXPECT_EQ(stated.T_BC.matrix(), calibrated_T_BC(s).matrix());
+    }
+  }
+  EXPECT_EQ(focal_signs.size(), 2u);  // seeded: both signs and several directions occur
+  EXPECT_EQ(k1_signs.size(), 2u);
+  EXPECT_GT((directions.front() - directions.back()).norm(), 1e-3);
+  // The defaults in every scenario but tiny; a key at 0 changes no other draw; all 0: the true intrinsics exactly.
+  s = builtin_scenario("city-loops");
+  const CameraIntrinsicErrors d = camera_intrinsic_errors(s);
+  EXPECT_NEAR(std::abs(d.focal_scale - 1), 0.003, 1e-15);
+  EXPECT_NEAR(d.principal_point_shift_px.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(d.k1_offset), 0.002, 1e-15);
+  s.camera.intrinsic_error_focal = 0;
+  EXPECT_EQ(camera_intrinsic_errors(s).focal_scale, 1.0);
+  EXPECT_EQ(camera_intrinsic_errors(s).principal_point_shift_px, d.principal_point_shift_px);
+  EXPECT_EQ(camera_intrinsic_errors(s).k1_offset, d.k1_offset);
+  s.camera.intrinsic_error_px = s.camera.intrinsic_error_k1 = 0;
+  const CameraIntrinsics truth = sim_camera_config(s).intrinsics, stated = calibrated_sim_camera_config(s).intrinsics;
+  EXPECT_TRUE(truth.fu == stated.fu && truth.fv == stated.fv && truth.cu == stated.cu && truth.cv == stated.cv &&
+              truth.coefficients == stated.coefficients);
+  const CameraIntrinsicErrors none = camera_intrinsic_errors(builtin_scenario("tiny"));
+  EXPECT_TRUE(none.focal_scale == 1.0 && none.principal_point_shift_px.isZero(0) && none.k1_offset == 0.0);
+}
+
 // Auto-exposure on uniform frames: the scene steps from 100 to 50 grey levels. The frame after the step is as dark as
 // the scene (the loop cannot know), then the gain returns to target / scene as exp(-t / tau).
 TEST(SimCameraErrors, AutoExposureFollowsABrightnessStepWithItsTimeConstant) {
@@ -129,16 +181,23 @@ struct SmallRun {
   fs::path dir;
 };
 
-SmallRun simulate_small(const std::string& name, double time_offset_s, double deg, double m, double tau_s) {
+struct CameraErrors {
+  double time_offset_s = 0, deg = 0, m = 0, tau_s = 0, focal = 0, px = 0, k1 = 0;
+};
+
+SmallRun simulate_small(const std::string& name, const CameraErrors& e) {
   SmallRun r{builtin_scenario("tiny"), fs::temp_directory_path() /
                                            ("twinslam_camera_errors_" + std::to_string(::getpid()) + "_" + name)};
   r.scenario.trajectory.duration_s = 10;
   r.scenario.camera.rate_hz = 2;
   r.scenario.gnss.model = "gaussian";
-  r.scenario.camera.time_offset_s = time_offset_s;
-  r.scenario.camera.extrinsic_error_deg = deg;
-  r.scenario.camera.extrinsic_error_m = m;
-  r.scenario.camera.auto_exposure_tau_s = tau_s;
+  r.scenario.camera.time_offset_s = e.time_offset_s;
+  r.scenario.camera.extrinsic_error_deg = e.deg;
+  r.scenario.camera.extrinsic_error_m = e.m;
+  r.scenario.camera.auto_exposure_tau_s = e.tau_s;
+  r.scenario.camera.intrinsic_error_focal = e.focal;
+  r.scenario.camera.intrinsic_error_px = e.px;
+  r.scenario.camera.intrinsic_error_k1 = e.k1;
   fs::remove_all(r.dir);
   SimOptions o;
   o.out = r.dir;
@@ -175,9 +234,10 @@ std::vector<TrackRow> read_tracks(const fs::path& file) {
 class SimCameraDataset : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    // The camera's imperfections at sizes a test resolves: 50 ms is 15 cm of flight at 3 m/s.
-    imperfect_ = new SmallRun(simulate_small("imperfect", 0.05, 2.0, 0.05, 0.3));
-    ideal_ = new SmallRun(simulate_small("ideal", 0, 0, 0, 0));
+    // The camera's imperfections at sizes a test resolves: 50 ms is 15 cm of flight at 3 m/s; 1 % of the focal
+    // length is 3 px at the image's edge.
+    imperfect_ = new SmallRun(simulate_small("imperfect", {0.05, 2.0, 0.05, 0.3, 0.01, 3.0, 0.01}));
+    ideal_ = new SmallRun(simulate_small("ideal", {}));
   }
   static void TearDownTestSuite() {
     for (SmallRun* r : {imperfect_, ideal_}) {
@@ -191,16 +251,21 @@ class SimCameraDataset : public ::testing::Test {
 SmallRun* SimCameraDataset::imperfect_ = nullptr;
 SmallRun* SimCameraDataset::ideal_ = nullptr;
 
-// Pixel error of the dataset's ideal tracks against the projection of each landmark from the true camera at
-// stamp - shift_s with extrinsics T_BC: the median over every row.
-double track_error_px(const SmallRun& r, double shift_s, const Eigen::Isometry3d& T_BC) {
+// Pixel error of the dataset's ideal tracks against the projection of each landmark from the camera at stamp -
+// shift_s with extrinsics T_BC and the given intrinsics (default: the true ones): the median over every row (within
+// centre_radius_px of the image centre, if given).
+double track_error_px(const SmallRun& r, double shift_s, const Eigen::Isometry3d& T_BC,
+                      const std::optional<CameraIntrinsics>& intrinsics = std::nullopt,
+                      double centre_radius_px = 1e9) {
   const City city = build_city(r.scenario.city, r.scenario.seed);
   const FlightTrajectory flight = make_flight_trajectory(r.scenario, city.hints);
   std::vector<Eigen::Vector3d> landmarks;
   for (const auto& s : sample_surface(city.mesh, 4000, r.scenario.seed)) landmarks.push_back(s.p_W);
-  const auto camera = make_camera(sim_camera_config(r.scenario).intrinsics);
+  const auto camera = make_camera(intrinsics.value_or(sim_camera_config(r.scenario).intrinsics));
   std::vector<double> errors;
+  const CameraIntrinsics truth = sim_camera_config(r.scenario).intrinsics;
   for (const TrackRow& row : read_tracks(r.dir / "mav0/cam0/features.csv")) {
+    if ((row.uv - Eigen::Vector2d(truth.cu, truth.cv)).norm() > centre_radius_px) continue;
     const Eigen::Isometry3d T_WC = flight.at(time_s(row.stamp) - shift_s).T_WB() * T_BC;
     Eigen::Vector2d uv;
     if (camera->project(T_WC.inverse() * landmarks.at(row.id), &uv) != ProjectionStatus::kOk) {
@@ -209,7 +274,7 @@ double track_error_px(const SmallRun& r, double shift_s, const Eigen::Isometry3d
     }
     errors.push_back((uv - row.uv).norm());
   }
-  EXPECT_GT(errors.size(), 200u);
+  EXPECT_GT(errors.size(), centre_radius_px < 1e9 ? 10u : 200u);
   std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
   return errors[errors.size() / 2];
 }
@@ -224,6 +289,16 @@ TEST_F(SimCameraDataset, TracksAtStampTShowThePoseAtTMinusTheOffsetAndTheTrueExt
   EXPECT_LT(at_offset, 1e-3);  // the file's 4 decimals
   EXPECT_GT(at_stamp, 0.3);
   EXPECT_GT(stated, 3.0);
+  // The stated intrinsics (focal 1 %, principal point 3 px, k1 0.01 off) with the true pose and extrinsics: the
+  // tracks are the true camera's, so the calibration's own error shows - near the image centre as the principal
+  // point's shift (the focal and k1 errors grow with the distance from it: 0.2 px at 20 px).
+  const CameraIntrinsics stated_k = calibrated_sim_camera_config(s).intrinsics;
+  const double everywhere = track_error_px(*imperfect_, s.camera.time_offset_s, camera_T_BC(s), stated_k);
+  const double centre = track_error_px(*imperfect_, s.camera.time_offset_s, camera_T_BC(s), stated_k, 20.0);
+  std::printf("tracks against the stated intrinsics (focal 1 %%, 3 px, k1 0.01): median %.2f px, %.2f px within 20 px "
+              "of the centre\n", everywhere, centre);
+  EXPECT_GT(everywhere, 1.0);
+  EXPECT_NEAR(centre, 3.0, 0.3);
   // Offset 0: the pose at the stamp.
   EXPECT_LT(track_error_px(*ideal_, 0, camera_T_BC(ideal_->scenario)), 1e-3);
 }
@@ -234,8 +309,18 @@ TEST_F(SimCameraDataset, SensorYamlStatesTheCalibratedExtrinsicsGroundTruthStays
   EXPECT_NEAR(angle_deg(stated.T_BC.linear(), T_true.linear()), 2.0, 1e-9);
   EXPECT_NEAR((stated.T_BC.translation() - T_true.translation()).norm(), 0.05, 1e-12);
   EXPECT_TRUE(stated.T_BC.isApprox(calibrated_T_BC(imperfect_->scenario), 1e-15));
+  const CameraIntrinsics want = calibrated_sim_camera_config(imperfect_->scenario).intrinsics;
+  EXPECT_NEAR(stated.intrinsics.fu, want.fu, 1e-9);
+  EXPECT_NEAR(stated.intrinsics.fv, want.fv, 1e-9);
+  EXPECT_NEAR(stated.intrinsics.cu, want.cu, 1e-9);
+  EXPECT_NEAR(stated.intrinsics.cv, want.cv, 1e-9);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(stated.intrinsics.coefficients[i], want.coefficients[i], 1e-12);
+  EXPECT_NEAR(std::abs(stated.intrinsics.fu / sim_camera_config(imperfect_->scenario).intrinsics.fu - 1), 0.01, 1e-12);
   const CameraConfig ideal = read_camera_sensor_yaml(ideal_->dir / "mav0/cam0/sensor.yaml");
   EXPECT_EQ(ideal.T_BC.matrix(), camera_T_BC(ideal_->scenario).matrix());
+  const CameraIntrinsics truth = sim_camera_config(ideal_->scenario).intrinsics;
+  EXPECT_TRUE(ideal.intrinsics.fu == truth.fu && ideal.intrinsics.cu == truth.cu && ideal.intrinsics.cv == truth.cv &&
+              ideal.intrinsics.coefficients == truth.coefficients);
   // The camera's errors leave the IMU, the ground truth and the frame stamps alone.
   for (const char* f : {"mav0/imu0/data.csv", "groundtruth.tum", "mav0/state_groundtruth_estimate0/data.csv",
                         "mav0/cam0/data.csv"})
@@ -244,6 +329,11 @@ TEST_F(SimCameraDataset, SensorYamlStatesTheCalibratedExtrinsicsGroundTruthStays
   const std::string yaml = slurp(imperfect_->dir / "dataset.yaml");
   EXPECT_NE(yaml.find("camera_time_offset_s: 0.05"), std::string::npos);
   EXPECT_NE(yaml.find("T_BC_calibrated: ["), std::string::npos);
+  EXPECT_TRUE(yaml.find("camera_focal_scale: 1.01") != std::string::npos ||
+              yaml.find("camera_focal_scale: 0.99") != std::string::npos);
+  EXPECT_NE(yaml.find("camera_principal_point_shift_px: ["), std::string::npos);
+  EXPECT_TRUE(yaml.find("camera_k1_offset: 0.01") != std::string::npos ||
+              yaml.find("camera_k1_offset: -0.01") != std::string::npos);
 }
 
 // The images: frame k is the render of the true camera at stamp - offset (bit for bit with auto-exposure off);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "twinslam/sim/camera_calibration.hpp"
 #include "twinslam/sim/scenario_io.hpp"
 
 namespace twinslam::sim {
@@ -26,6 +27,19 @@ CameraConfig sim_camera_config(const Scenario& scenario) {
   }
   cfg.T_BC = camera_T_BC(scenario);
   cfg.rate_hz = c.rate_hz;
+  return cfg;
+}
+
+CameraConfig calibrated_sim_camera_config(const Scenario& scenario) {
+  CameraConfig cfg = sim_camera_config(scenario);
+  const CameraIntrinsicErrors e = camera_intrinsic_errors(scenario);
+  auto& k = cfg.intrinsics;
+  k.fu *= e.focal_scale;
+  k.fv *= e.focal_scale;
+  k.cu += e.principal_point_shift_px.x();
+  k.cv += e.principal_point_shift_px.y();
+  k.coefficients[0] += e.k1_offset;
+  cfg.T_BC = calibrated_T_BC(scenario);
   return cfg;
 }
 

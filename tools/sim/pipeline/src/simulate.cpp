@@ -9,7 +9,6 @@
 #include "twinslam/core/progress.hpp"
 #include "twinslam/camera/sensor_yaml.hpp"
 #include "twinslam/sim/auto_exposure.hpp"
-#include "twinslam/sim/camera_calibration.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/sim/clock.hpp"
 #include "twinslam/sim/dataset_writer.hpp"
@@ -136,9 +135,8 @@ SimSummary simulate(const Scenario& scenario, const SimOptions& options) {
 
   // Camera: calibration file, then one rendered image per frame.
   const CameraConfig camera_cfg = sim_camera_config(scenario);  // the true camera: images and tracks
-  CameraConfig stated_cfg = camera_cfg;                           // the calibration: camera.extrinsic_error_*
-  stated_cfg.T_BC = calibrated_T_BC(scenario);
-  write_camera_sensor_yaml(dir / "mav0/cam0/sensor.yaml", stated_cfg);
+  // The calibration it states: camera.extrinsic_error_*, camera.intrinsic_error_*.
+  write_camera_sensor_yaml(dir / "mav0/cam0/sensor.yaml", calibrated_sim_camera_config(scenario));
   const auto camera = make_camera(camera_cfg.intrinsics);
   RenderConfig render_cfg;
   render_cfg.threads = options.render_threads;

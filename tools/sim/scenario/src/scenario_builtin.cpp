@@ -43,6 +43,7 @@ Scenario builtin_scenario(const std::string& name) {
     s.trajectory.loops = 1;
     // Ideal sensors, so the tests built on `tiny` see exactly what they always saw.
     s.camera.time_offset_s = s.camera.extrinsic_error_deg = s.camera.extrinsic_error_m = 0;
+    s.camera.intrinsic_error_focal = s.camera.intrinsic_error_px = s.camera.intrinsic_error_k1 = 0;
     s.camera.auto_exposure_tau_s = 0;
     s.camera.line_time_us = s.camera.exposure_ms = 0;
     s.traffic.cars = 0;

@@ -77,10 +77,14 @@ void read_camera(const YamlReader& r, const YAML::Node& n, CameraSimConfig& c) {
   if (!n) return;
   r.check_keys(n, "camera.", {"model", "width", "height", "rate_hz", "fov_deg", "T_BC",
                               "time_offset_s", "extrinsic_error_deg", "extrinsic_error_m", "auto_exposure_tau_s",
+                              "intrinsic_error_focal", "intrinsic_error_px", "intrinsic_error_k1",
                               "line_time_us", "exposure_ms"});
   r.read(n, "camera.", "time_offset_s", c.time_offset_s);
   r.read(n, "camera.", "extrinsic_error_deg", c.extrinsic_error_deg);
   r.read(n, "camera.", "extrinsic_error_m", c.extrinsic_error_m);
+  r.read(n, "camera.", "intrinsic_error_focal", c.intrinsic_error_focal);
+  r.read(n, "camera.", "intrinsic_error_px", c.intrinsic_error_px);
+  r.read(n, "camera.", "intrinsic_error_k1", c.intrinsic_error_k1);
   r.read(n, "camera.", "auto_exposure_tau_s", c.auto_exposure_tau_s);
   r.read(n, "camera.", "line_time_us", c.line_time_us);
   r.read(n, "camera.", "exposure_ms", c.exposure_ms);

@@ -59,6 +59,9 @@ std::string scenario_to_yaml(const Scenario& s) {
     << "\n  T_BC: " << list(T_rows) << "   # body <- camera, row-major 4x4\n";
   o << "  time_offset_s: " << num(s.camera.time_offset_s) << "\n  extrinsic_error_deg: "
     << num(s.camera.extrinsic_error_deg) << "\n  extrinsic_error_m: " << num(s.camera.extrinsic_error_m)
+    << "\n  intrinsic_error_focal: " << num(s.camera.intrinsic_error_focal)
+    << "\n  intrinsic_error_px: " << num(s.camera.intrinsic_error_px)
+    << "\n  intrinsic_error_k1: " << num(s.camera.intrinsic_error_k1)
     << "\n  auto_exposure_tau_s: " << num(s.camera.auto_exposure_tau_s)
     << "\n  line_time_us: " << num(s.camera.line_time_us) << "\n  exposure_ms: " << num(s.camera.exposure_ms) << "\n";
   o << "imu: {rate_hz: " << num(s.imu.rate_hz) << ", gyro_noise: " << num(s.imu.gyro_noise)

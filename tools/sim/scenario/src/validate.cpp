@@ -104,6 +104,9 @@ void validate_scenario_at(const Scenario& s, const std::string& file, const std:
             "must be in [-0.1, 0.1] s (0 turns it off)");  // also refuses NaN
   c.magnitude(s.camera.extrinsic_error_deg, 10, "camera.extrinsic_error_deg", "deg");
   c.magnitude(s.camera.extrinsic_error_m, 0.5, "camera.extrinsic_error_m", "m");
+  c.magnitude(s.camera.intrinsic_error_focal, 0.05, "camera.intrinsic_error_focal", "(relative)");
+  c.magnitude(s.camera.intrinsic_error_px, 20, "camera.intrinsic_error_px", "px");
+  c.magnitude(s.camera.intrinsic_error_k1, 0.05, "camera.intrinsic_error_k1", "(coefficient)");
   c.magnitude(s.camera.auto_exposure_tau_s, 60, "camera.auto_exposure_tau_s", "s");
   // A row's readout and a frame's exposure both fit in the frame period.
   const double frame_us = 1e6 / s.camera.rate_hz;

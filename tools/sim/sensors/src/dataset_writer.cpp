@@ -91,6 +91,15 @@ void append_sensor_errors(std::string& y, const Scenario& scenario) {
   y += "   # image stamp - exposure time (IMU clock)\n";
   append_rows(y, "T_BC_true", camera_T_BC(scenario).matrix(), "body <- camera of the images, row-major");
   append_rows(y, "T_BC_calibrated", calibrated_T_BC(scenario).matrix(), "what mav0/cam0/sensor.yaml states");
+  const CameraIntrinsicErrors k = camera_intrinsic_errors(scenario);
+  y += "  camera_focal_scale: ";
+  append_number(y, k.focal_scale);
+  y += "   # stated fu, fv = true x this\n";
+  append_rows(y, "camera_principal_point_shift_px", k.principal_point_shift_px.transpose(),
+              "stated (cu, cv) - true [px]");
+  y += "  camera_k1_offset: ";
+  append_number(y, k.k1_offset);
+  y += "   # stated - true first distortion coefficient\n";
   const ImuDeviceErrors imu = imu_device_errors(scenario.imu, scenario.seed);
   append_rows(y, "imu_gyro_matrix", imu.gyro_matrix, "gyro = M w_B + b_g + n, row-major");
   append_rows(y, "imu_accel_matrix", imu.accel_matrix, "accel = M f_B + b_a + n, row-major");

@@ -7,7 +7,7 @@ namespace twinslam::sim::detail {
 
 enum class Stream : std::uint32_t {
   Imu = 1, Gnss = 2, Route = 3, GnssRaytrace = 4,  // 4: pipeline/gnss_raytrace.cpp
-  ImuDevice = 11, ImuInstability = 12, CameraExtrinsics = 13  // imperfect sensors (issue 13)
+  ImuDevice = 11, ImuInstability = 12, CameraExtrinsics = 13, CameraIntrinsics = 14  // imperfect sensors (issue 13)
 };
 
 inline std::mt19937_64 make_rng(std::uint64_t seed, Stream stream) {

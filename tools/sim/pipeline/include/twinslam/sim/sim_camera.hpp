@@ -11,4 +11,8 @@ namespace twinslam::sim {
 // T_BC from the scenario (camera_T_BC).
 CameraConfig sim_camera_config(const Scenario& scenario);
 
+// What mav0/cam0/sensor.yaml states: sim_camera_config's intrinsics with camera_intrinsic_errors(scenario) applied
+// (camera_calibration.hpp) and the extrinsics calibrated_T_BC(scenario).
+CameraConfig calibrated_sim_camera_config(const Scenario& scenario);
+
 }  // namespace twinslam::sim
