@@ -59,8 +59,9 @@ struct CameraSimConfig {
   double extrinsic_error_deg = 0.5;           // [deg]
   double extrinsic_error_m = 0.01;            // [m]
   // The intrinsics written to cam0/sensor.yaml are the true ones (rendered with) with the focal lengths scaled by
-  // 1 +- intrinsic_error_focal (seeded sign), the principal point moved by intrinsic_error_px in a seeded direction and
-  // intrinsic_error_k1 added to the first distortion coefficient (seeded sign): what a checkerboard calibration of a
+  // 1 +- intrinsic_error_focal, the principal point moved by intrinsic_error_px in a seeded direction and
+  // +- intrinsic_error_k1 added to the first distortion coefficient, one seeded sign for focal and k1 (so that they
+  // add off-axis, camera_calibration.hpp): what a checkerboard calibration of a
   // wide-angle camera leaves (focal length to a few tenths of a percent, about a pixel at 305 px; the principal point
   // to about a pixel; the equidistant k1 to a few thousandths, 0.7 px at 60 deg off-axis).
   double intrinsic_error_focal = 0.003;       // [-], relative
