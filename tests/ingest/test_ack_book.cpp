@@ -30,8 +30,11 @@ TEST(AckBook, AnotherVehiclesAcksAndHeartbeatsDoNotCount) {
   EXPECT_FALSE(book.all_acked({"estimator"}, 100));
   EXPECT_FALSE(book.all_ready({"estimator"}));
   book.on_heartbeat(heartbeat("", "registration", msg::SVC_READY));  // serves every vehicle
+  // The start-up timeout names who it still waits for.
+  EXPECT_EQ(book.not_ready({"tracking", "estimator", "registration"}), (std::vector<std::string>{"tracking", "estimator"}));
   book.on_heartbeat(heartbeat("uav1", "estimator", msg::SVC_READY));
   EXPECT_TRUE(book.all_ready({"estimator", "registration"}));
+  EXPECT_TRUE(book.not_ready({"estimator", "registration"}).empty());
 }
 
 TEST(AckBook, AcknowledgedFramesNeverGoBackAndEveryServiceMustHaveAcked) {

@@ -39,5 +39,28 @@ TEST(IngestNode, ClosesItsReadersWhenDestroyedSoLateAcksReachNothing) {
   acks.publish(ack);  // would have run the deleted node's callback
 }
 
+// A start that never completes says what it waited for: which streams lack readers and whose READY never came (in CI
+// a secured run's ingest once timed out without saying which).
+TEST(IngestNode, AStartUpTimeoutNamesTheMissingReadersAndServices) {
+  const Dataset dataset = load_dataset(test::euroc_dir());
+  dds::Node node(config("ingest"));
+  dds::Node peer(config("estimator"));
+  peer.subscribe<msg::Imu>(dds::topics::kImu, [](const msg::Imu&) {});
+  IngestOptions options;
+  options.wait_readers = {1, 1, 0};
+  options.ack_from = {"estimator"};
+  options.start_timeout = std::chrono::milliseconds(4000);  // discovery takes well under a second
+  IngestNode ingest(node, dataset, options);
+  try {
+    ingest.run();
+    FAIL() << "ingest started without an image reader";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no consumer ready within 4000 ms"), std::string::npos) << what;
+    EXPECT_NE(what.find("imu 1/1, frames 0/1"), std::string::npos) << what;
+    EXPECT_NE(what.find("no READY heard from estimator"), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace twinslam::ingest

@@ -283,6 +283,10 @@ int run_pipeline(const RunOptions& o) {
   std::ofstream(out / "run.json") << run.dump(2) << '\n';
   if (uses_twin(o.mode) && fs::exists(out / "landmarks.csv")) write_changes_of_run(out, o.quiet);
 
+  if (status == "failed") {  // also when quiet: which service failed, and why, in its own words
+    std::cerr << "twinslam run: a service failed; logs in " << (out / "logs").string() << std::endl;
+    for (const auto& line : failed_service_lines(results, out / "logs")) std::cerr << "  " << line << std::endl;
+  }
   if (o.quiet) return status == "failed" ? kExitInternal : kExitOk;
   std::printf("run %s: %s in %.1f s (mode %s, %s replay, domain %d)\n", out.string().c_str(), status.c_str(), wall_s,
               o.mode.c_str(), o.realtime ? "realtime" : "lockstep", domain);
@@ -290,9 +294,6 @@ int run_pipeline(const RunOptions& o) {
   for (const auto& [name, count] : messages.items()) std::printf("%-28s %10llu\n", name.c_str(), count.get<unsigned long long>());
   std::printf("dataset: %zu IMU, %zu images, %zu GNSS\n", dataset.imu.size(), dataset.images.size(),
               dataset.gnss.size());
-  if (status == "failed") {
-    std::cerr << "twinslam run: a service failed; logs in " << (out / "logs").string() << std::endl;
-  }
   return status == "failed" ? kExitInternal : kExitOk;
 }
 

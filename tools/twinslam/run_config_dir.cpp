@@ -3,6 +3,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <yaml-cpp/yaml.h>
+
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/main_guard.hpp"
 #include "twinslam/ingest/ingest_config.hpp"
@@ -26,6 +28,17 @@ std::vector<std::string> config_args(const std::string& dir, const std::string& 
   return {"--config", file.string()};
 }
 
+bool config_sets_key(const std::string& dir, const std::string& service, const std::string& key) {
+  const auto args = config_args(dir, service);
+  if (args.empty()) return false;
+  try {
+    const YAML::Node root = YAML::LoadFile(args.back());
+    return root.IsMap() && root[key].IsDefined();
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+
 namespace {
 
 // The service's error line ("twinslam-estimator: FILE:LINE: ..."), without the program prefix; empty if none.
@@ -47,7 +60,21 @@ void throw_startup_failure(const std::vector<process::ChildResult>& results, con
     const std::string line = error_line(log_dir / (r.name + ".log"), r.name);
     if (!line.empty()) throw InputError(r.name + ": " + line);
   }
-  throw std::runtime_error("a service stopped during start-up (see " + log_dir.string() + ")");
+  std::string why;
+  for (const auto& line : failed_service_lines(results, log_dir)) why += "; " + line;
+  throw std::runtime_error("a service stopped during start-up (logs in " + log_dir.string() + ")" + why);
+}
+
+std::vector<std::string> failed_service_lines(const std::vector<process::ChildResult>& results,
+                                              const fs::path& log_dir) {
+  std::vector<std::string> lines;
+  for (const auto& r : results) {
+    if (r.ok()) continue;
+    const std::string line = error_line(log_dir / (r.name + ".log"), r.name);
+    lines.push_back(r.name + " (" + process::describe_end(r.exit_code, r.signal) +
+                    "): " + (line.empty() ? "see " + (log_dir / (r.name + ".log")).string() : line));
+  }
+  return lines;
 }
 
 }  // namespace twinslam::cli

@@ -1,6 +1,7 @@
 #include "run_services.hpp"
 
 #include "modes.hpp"
+#include "run_config_dir.hpp"
 
 namespace twinslam::cli {
 
@@ -70,6 +71,12 @@ std::vector<std::string> ingest_args(const RunOptions& o, const ServiceInputs& i
                                 "imu=" + std::to_string(imu_readers) + ",image=" + std::to_string(2 + viewer) +
                                     ",gnss=" + std::to_string(has_gnss ? gnss_readers : 0)};
   if (o.features) args.push_back("--features");
+  // Ingest's wait for its readers (and for READY from those it waits on) gets the run's start-up budget, as the
+  // services' own start did: under DDS-Security each new pair of participants must first complete a handshake, which
+  // a loaded host can make slow. An ingest.yaml in --config-dir that names start_timeout_s keeps its own.
+  if (!config_sets_key(o.config_dir, "ingest", "start_timeout_s")) {
+    args.insert(args.end(), {"--start-timeout", std::to_string(o.start_timeout_s)});
+  }
   // Lockstep: the next frame goes out once every stage has finished the previous one.
   if (!o.realtime) args.insert(args.end(), {"--ack-from", o.features ? "estimator" : "tracking,estimator"});
   return args;

@@ -34,6 +34,15 @@ bool AckBook::all_ready(const std::vector<std::string>& services) const {
   return std::all_of(services.begin(), services.end(), [&](const std::string& s) { return ready_.count(s) > 0; });
 }
 
+std::vector<std::string> AckBook::not_ready(const std::vector<std::string>& services) const {
+  std::lock_guard lock(mutex_);
+  std::vector<std::string> missing;
+  for (const auto& s : services) {
+    if (ready_.count(s) == 0) missing.push_back(s);
+  }
+  return missing;
+}
+
 std::int64_t AckBook::last_acked(const std::string& service) const {
   std::lock_guard lock(mutex_);
   const auto it = acked_.find(service);

@@ -27,6 +27,8 @@ class AckBook {
   bool all_acked(const std::vector<std::string>& services, std::int64_t stamp_ns) const;
   // Every service in `services` announced READY or RUNNING for this vehicle (or for every vehicle).
   bool all_ready(const std::vector<std::string>& services) const;
+  // Those of `services` not yet heard announcing READY or RUNNING, in their order (the start-up timeout names them).
+  std::vector<std::string> not_ready(const std::vector<std::string>& services) const;
   // The newest frame `service` acknowledged; INT64_MIN if none.
   std::int64_t last_acked(const std::string& service) const;
 

@@ -94,16 +94,24 @@ class IngestNode::Impl {
     }
     while (!ready()) {
       if (shutdown_requested()) return false;
-      if (Clock::now() > deadline) {
-        throw std::runtime_error("no consumer ready within " + std::to_string(opt_.start_timeout.count()) +
-                                 " ms (matched readers: imu " + std::to_string(imu_.matched_readers()) + ", frames " +
-                                 std::to_string(features_ != nullptr ? features_w_.matched_readers()
-                                                                     : image_.matched_readers()) +
-                                 ", gnss " + std::to_string(gnss_.matched_readers()) + ")");
-      }
+      if (Clock::now() > deadline) throw std::runtime_error(start_timeout_message());
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return true;
+  }
+
+  // What the start-up still waited for: matched readers of each stream against those awaited, and the services not
+  // heard announcing READY (a secured peer whose DDS-Security handshake never completed shows up here).
+  std::string start_timeout_message() const {
+    const int frames = features_ != nullptr ? features_w_.matched_readers() : image_.matched_readers();
+    const auto count = [](int matched, int wanted) { return std::to_string(matched) + "/" + std::to_string(wanted); };
+    std::string text = "no consumer ready within " + std::to_string(opt_.start_timeout.count()) +
+                       " ms (matched readers: imu " + count(imu_.matched_readers(), opt_.wait_readers.imu) +
+                       ", frames " + count(frames, opt_.wait_readers.image) + ", gnss " +
+                       count(gnss_.matched_readers(), ds_.gnss.empty() ? 0 : opt_.wait_readers.gnss);
+    std::string missing;
+    for (const auto& s : acks_.not_ready(opt_.ack_from)) missing += (missing.empty() ? "" : ", ") + s;
+    return text + (missing.empty() ? ")" : "; no READY heard from " + missing + ")");
   }
 
   // Lockstep: every reliable reader holds everything sent so far (at most one frame in flight, so a burst never
