@@ -153,6 +153,14 @@ TEST(DeployConfig, OutOfRangeNamesFileAndKey) {
   EXPECT_EQ(error_of(s[0], "window_keyframes: 1\n"), "estimator.yaml: sliding_window.window_keyframes: must be >= 2");
   EXPECT_EQ(error_of(s[0], "motion_init:\n  min_span_s: 3.0\n"),
             "estimator.yaml: motion_init.min_span_s: must be <= window_s");
+  EXPECT_EQ(error_of(s[0], "world_alignment_random_walk_deg: -0.1\n"),
+            "estimator.yaml: sliding_window.world_alignment_random_walk_deg: must be in [0, 10] deg/sqrt(s) (0: T_WL "
+            "constant)");
+  EXPECT_EQ(error_of(s[0], "world_alignment_random_walk_m: 12\n"),
+            "estimator.yaml: sliding_window.world_alignment_random_walk_m: must be in [0, 10] m/sqrt(s) (0: T_WL "
+            "constant)");
+  EXPECT_EQ(error_of(s[0], "world_alignment_random_walk_m: .nan\n"),
+            "estimator.yaml:1: estimator key 'world_alignment_random_walk_m': expected a finite number, got .nan");
   EXPECT_EQ(error_of(s[0], "node:\n  lockstep_max_solver_time_s: 0\n"),
             "estimator.yaml: estimator key 'node.lockstep_max_solver_time_s': must be > 0");
   EXPECT_EQ(error_of(s[1], "klt_window_px: 4\n"),

@@ -126,6 +126,21 @@ void scatter_prior(LinearProblem& p, const est::MarginalizationPrior& prior, Eig
   }
 }
 
+// x0, x1 in R^2, a relative factor r = x1 - x0 - d and an absolute one on x0's first coordinate, 2 (x0[0] - c):
+// marginalizing x0 leaves x1's second coordinate without information (a gauge direction).
+struct GaugeProblem {
+  Eigen::VectorXd x0 = Eigen::Vector2d(0.3, -1.0), x1 = Eigen::Vector2d(1.1, 2.0);
+  const LinearFactor relative{{-Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(2, 2)},
+                              Eigen::Vector2d(0.5, 0.5)};
+  const LinearFactor absolute{{(Eigen::MatrixXd(1, 2) << 2.0, 0.0).finished()}, Eigen::VectorXd::Constant(1, 0.2)};
+  // Both factors added and x0 marked.
+  void fill(est::Marginalizer& m) {
+    m.add_factor(&relative, nullptr, {x0.data(), x1.data()});
+    m.add_factor(&absolute, nullptr, {x0.data()});
+    m.marginalize_block(x0.data());
+  }
+};
+
 }  // namespace
 
 TEST(Marginalization, PriorEqualsTheDenseSchurComplementOfTheHessian) {
@@ -268,18 +283,9 @@ TEST(Marginalization, UnconstrainedDirectionsGetNoInformation) {
   // x0, x1 in R^2. A relative factor r = x1 - x0 - d and an absolute factor on x0's first coordinate only, 2 (x0[0] - c).
   // Marginalizing x0: H_mm = diag(5, 1), H_rm = -I, H_rr = I, so H* = I - diag(1/5, 1) = diag(4/5, 0): the second
   // coordinate of x1 (a gauge direction: nothing anchors it) must get exactly no information, and no gradient.
-  Eigen::VectorXd x0(2), x1(2);
-  x0 << 0.3, -1.0;
-  x1 << 1.1, 2.0;
-  const LinearFactor relative({-Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(2, 2)},
-                              Eigen::Vector2d(0.5, 0.5));
-  Eigen::MatrixXd A(1, 2);
-  A << 2.0, 0.0;
-  const LinearFactor absolute({A}, Eigen::VectorXd::Constant(1, 0.2));
+  GaugeProblem p;
   est::Marginalizer marginalizer;
-  marginalizer.add_factor(&relative, nullptr, {x0.data(), x1.data()});
-  marginalizer.add_factor(&absolute, nullptr, {x0.data()});
-  marginalizer.marginalize_block(x0.data());
+  p.fill(marginalizer);
   const auto prior = marginalizer.marginalize();
   ASSERT_NE(prior, nullptr);
   EXPECT_EQ(prior->num_residuals(), 1);
@@ -292,7 +298,45 @@ TEST(Marginalization, UnconstrainedDirectionsGetNoInformation) {
 
   // Only the relative factor: no information at all is left, so there is no prior.
   est::Marginalizer relative_only;
-  relative_only.add_factor(&relative, nullptr, {x0.data(), x1.data()});
-  relative_only.marginalize_block(x0.data());
+  relative_only.add_factor(&p.relative, nullptr, {p.x0.data(), p.x1.data()});
+  relative_only.marginalize_block(p.x0.data());
   EXPECT_EQ(relative_only.marginalize(), nullptr);
+}
+
+// Process noise on a kept block (the world alignment's random walk): the prior's covariance of that block grows by
+// exactly diag(variance), every other covariance entry and the mean stay; a rank-deficient prior keeps its null space.
+TEST(Marginalization, ProcessNoiseGrowsOnlyThatBlocksCovarianceAndKeepsTheMean) {
+  for (unsigned seed : {46u, 47u}) {
+    LinearProblem p(seed);
+    const auto plain = p.marginalize();
+    est::Marginalizer noisy;
+    for (auto& f : p.factors) {
+      if (f.connected) noisy.add_factor(f.factor.get(), nullptr, p.pointers(f.blocks));
+    }
+    noisy.marginalize_block(p.x[0].data());
+    noisy.marginalize_block(p.x[1].data());
+    const Eigen::Vector4d variance(0.5, 0.0, 2.0, 0.25);  // x3 (4 coordinates); a zero leaves that one as it was
+    noisy.add_process_noise(p.x[3].data(), variance);
+    const auto inflated = noisy.marginalize();
+    ASSERT_NE(inflated, nullptr);
+    ASSERT_EQ(plain->parameter_blocks(), inflated->parameter_blocks());  // x2 (3) then x3 (4)
+    const Eigen::MatrixXd cov = plain->hessian().inverse(), cov_noisy = inflated->hessian().inverse();
+    Eigen::MatrixXd expected = cov;
+    expected.bottomRightCorner(4, 4) += variance.asDiagonal();
+    EXPECT_LT((cov_noisy - expected).cwiseAbs().maxCoeff(), 1e-8 * cov.cwiseAbs().maxCoeff()) << "seed " << seed;
+    // The prior's minimum (its mean offset -H^-1 g) is where it was.
+    const Eigen::VectorXd mean = -cov * plain->gradient(), mean_noisy = -cov_noisy * inflated->gradient();
+    EXPECT_LT((mean_noisy - mean).cwiseAbs().maxCoeff(), 1e-8 * mean.cwiseAbs().maxCoeff());
+  }
+  // The gauge direction of UnconstrainedDirectionsGetNoInformation stays without information under process noise on
+  // the same block, and the constrained one gets 1 / (1 / 0.8 + 0.5).
+  GaugeProblem g;
+  est::Marginalizer m;
+  g.fill(m);
+  m.add_process_noise(g.x1.data(), Eigen::Vector2d(0.5, 0.5));
+  const auto prior = m.marginalize();
+  ASSERT_NE(prior, nullptr);
+  EXPECT_NEAR(prior->hessian()(0, 0), 1.0 / (1.0 / 0.8 + 0.5), 1e-12);
+  EXPECT_LT(std::abs(prior->hessian()(1, 1)) + std::abs(prior->hessian()(0, 1)), 1e-12);
+  EXPECT_THROW(m.add_process_noise(g.x1.data(), Eigen::Vector2d(-1.0, 0.0)), std::invalid_argument);
 }

@@ -55,6 +55,13 @@ std::vector<ceres::ResidualBlockId> Marginalizer::add_connected(const ceres::Pro
 
 void Marginalizer::set_block_kind(double* block, BlockKind kind) { kinds_[block] = kind; }
 
+void Marginalizer::add_process_noise(double* block, const Eigen::VectorXd& variance) {
+  if (!variance.allFinite() || (variance.array() < 0.0).any()) {
+    throw std::invalid_argument("Marginalizer: process noise variances must be finite and >= 0");
+  }
+  process_noise_.emplace_back(block, variance);
+}
+
 namespace {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -212,7 +219,23 @@ std::unique_ptr<MarginalizationPrior> Marginalizer::marginalize() const {
   const Eigen::MatrixXd Hrm = H.bottomLeftCorner(n, m);
   Eigen::MatrixXd Hs = H.bottomRightCorner(n, n) - Hrm * Hmm_inv * Hrm.transpose();
   Hs = 0.5 * (Hs + Hs.transpose());
-  const Eigen::VectorXd gs = g.tail(n) - Hrm * (Hmm_inv * g.head(m));
+  Eigen::VectorXd gs = g.tail(n) - Hrm * (Hmm_inv * g.head(m));
+  for (const auto& [block, variance] : process_noise_) {
+    const int offset = lin.offset_of(block) - m;
+    if (offset < 0) continue;  // in no factor
+    const int k = static_cast<int>(variance.size());
+    const auto at = std::find(lin.blocks.begin(), lin.blocks.end(), block) - lin.blocks.begin();
+    if (lin.kinds[at] != BlockKind::kEuclidean || lin.tangents[at] != k) {
+      throw std::logic_error("Marginalizer: process noise needs a kept Euclidean block of its size");
+    }
+    // Woodbury (header): Cov' = Cov + E Q E^T without inverting H, which may be rank-deficient.
+    const Eigen::MatrixXd Hw = Hs.middleCols(offset, k);
+    const Eigen::MatrixXd Q = variance.asDiagonal();
+    const Eigen::MatrixXd K = (Eigen::MatrixXd::Identity(k, k) + Q * Hw.middleRows(offset, k)).lu().solve(Q);
+    gs -= Hw * (K * gs.segment(offset, k));
+    Hs -= Hw * K * Hw.transpose();
+    Hs = 0.5 * (Hs + Hs.transpose());
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Hs);
   std::vector<int> keep;
   for (int i = 0; i < n; ++i) {

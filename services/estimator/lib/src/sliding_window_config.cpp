@@ -49,6 +49,12 @@ void SlidingWindowConfig::validate() const {
   if (!(camera_rotation_sigma_deg >= 0.0) || !(camera_rotation_sigma_deg <= 10.0)) {
     throw InputError("sliding_window.camera_rotation_sigma_deg: must be in [0, 10] (0: fixed R_BC)");
   }
+  if (!(world_alignment_random_walk_deg >= 0.0) || !(world_alignment_random_walk_deg <= 10.0)) {
+    throw InputError("sliding_window.world_alignment_random_walk_deg: must be in [0, 10] deg/sqrt(s) (0: T_WL constant)");
+  }
+  if (!(world_alignment_random_walk_m >= 0.0) || !(world_alignment_random_walk_m <= 10.0)) {
+    throw InputError("sliding_window.world_alignment_random_walk_m: must be in [0, 10] m/sqrt(s) (0: T_WL constant)");
+  }
   imu.validate();
   reprojection_noise().validate();
   static_init().validate();

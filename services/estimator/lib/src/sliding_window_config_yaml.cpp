@@ -43,6 +43,8 @@ void bind_solver_and_init(yaml::Fields& f, SlidingWindowConfig& c) {
       .number("solver_function_tolerance", c.solver_function_tolerance)
       .number("pixel_sigma", c.pixel_sigma, "px")
       .number("camera_rotation_sigma_deg", c.camera_rotation_sigma_deg, "deg")
+      .number("world_alignment_random_walk_deg", c.world_alignment_random_walk_deg, "deg/sqrt(s)")
+      .number("world_alignment_random_walk_m", c.world_alignment_random_walk_m, "m/sqrt(s)")
       .number("gravity_mps2", c.gravity_mps2, "m/s^2")
       .number("static_window_s", c.static_window_s, "s")
       .number("max_rest_feature_motion_px", c.max_rest_feature_motion_px, "px")

@@ -1,5 +1,7 @@
 // Sliding the window: the oldest keyframe leaves it into the marginalization prior.
 #include <algorithm>
+#include <cmath>
+#include <optional>
 
 #include "twinslam/estimator/landmark.hpp"
 #include "twinslam/estimator/sliding_window_state.hpp"
@@ -56,6 +58,26 @@ MarginalizationSelection select_for_marginalization(WindowState& s, const std::v
   return sel;
 }
 
+namespace {
+
+// T_WL as a random walk over the `dt_s` the prior moves forward (sliding_window_config.hpp): the alignment prior
+// from set_world_alignment() goes into the marginalization prior (once), so that it ages with everything else the
+// window knew of T_WL. Returns that prior's term, which must outlive m.marginalize().
+std::optional<ResidualTerm> add_world_alignment_random_walk(WindowState& s, Marginalizer& m, double dt_s) {
+  const double walk_m = s.config.world_alignment_random_walk_m;
+  const double walk_rad = s.config.world_alignment_random_walk_deg * M_PI / 180.0;
+  if (!s.world_aligned || (walk_m <= 0.0 && walk_rad <= 0.0) || !(dt_s > 0.0)) return std::nullopt;
+  std::optional<ResidualTerm> retired = std::move(s.world_prior);
+  s.world_prior.reset();
+  if (retired) m.add_factor(retired->cost.get(), retired->loss.get(), retired->blocks);
+  Eigen::VectorXd variance(kWorldAlignmentSize);  // [p_WL (m^2), yaw_WL (rad^2)]
+  variance << walk_m * walk_m * dt_s, walk_m * walk_m * dt_s, walk_m * walk_m * dt_s, walk_rad * walk_rad * dt_s;
+  m.add_process_noise(s.T_WL.data(), variance);
+  return retired;
+}
+
+}  // namespace
+
 void marginalize_oldest(WindowState& s) {
   WindowFrame& k0 = *s.frames[0];
   WindowFrame& k1 = *s.frames[1];
@@ -67,6 +89,8 @@ void marginalize_oldest(WindowState& s) {
   Marginalizer m(s.config.marginalization);
   for (const auto& t : sel.terms) m.add_factor(t.cost.get(), t.loss.get(), t.blocks);
   for (double* b : sel.blocks) m.marginalize_block(b);
+  const auto retired_world_prior =
+      add_world_alignment_random_walk(s, m, 1e-9 * static_cast<double>(k1.stamp_ns - k0.stamp_ns));
   s.prior = m.marginalize();
   s.first_prior_active = false;
 

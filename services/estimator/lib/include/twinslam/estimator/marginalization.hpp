@@ -98,6 +98,13 @@ class Marginalizer {
   std::vector<ceres::ResidualBlockId> add_connected(const ceres::Problem& problem, const std::vector<double*>& blocks);
   // Kinds default from the size (kPoseSize -> kPose, otherwise kEuclidean); override here.
   void set_block_kind(double* block, BlockKind kind);
+  // Process noise on a kept Euclidean block: the prior's covariance of `block` grows by diag(variance) (one entry per
+  // coordinate, >= 0; a zero leaves that coordinate as it was), every other marginal and the mean stay (Woodbury on the
+  // Schur complement: H' = H - H_w (I + Q H_ww)^-1 Q H_w^T, g' = g - H_w (I + Q H_ww)^-1 Q g_w, valid for a rank-
+  // deficient H). What a slowly varying state needs, whose information would otherwise pile up in the prior forever
+  // (the world alignment T_WL: sliding_window_config.hpp, world_alignment_random_walk). Ignored when the block is in no
+  // factor. Throws std::invalid_argument for a negative or non-finite variance.
+  void add_process_noise(double* block, const Eigen::VectorXd& variance);
 
   // Evaluates the factors at the current block values (see DenseLinearization). Throws like marginalize(), except
   // that here no block needs to remain (the window's full Hessian for covariances).
@@ -129,6 +136,7 @@ class Marginalizer {
   std::vector<Factor> factors_;
   std::vector<double*> marginalized_;
   std::unordered_map<double*, BlockKind> kinds_;
+  std::vector<std::pair<double*, Eigen::VectorXd>> process_noise_;
 };
 
 }  // namespace twinslam::estimator
