@@ -7,6 +7,7 @@
 
 #include "sliding_window_sim.hpp"
 #include "twinslam/core/error.hpp"
+#include "twinslam/estimator/lens_calibration.hpp"
 #include "twinslam/estimator/sliding_window_estimator.hpp"
 #include "twinslam/geometry/so3.hpp"
 
@@ -312,6 +313,60 @@ TEST(SlidingWindow, OnlineCameraRotationCalibrationFindsAWrongMounting) {
   EXPECT_LT(mounting_error_deg, 0.25);
   EXPECT_LT(r_cal.max_rotation_deg, r_fixed.max_rotation_deg);
   EXPECT_LT(r_cal.rmse_position_m, 0.1);
+}
+
+TEST(SlidingWindow, OnlineLensCalibrationFindsAWrongFocalLengthAndK1) {
+  // The bearings come through stated intrinsics 0.5 % off in focal length and 0.01 in k1 (the inverse of the
+  // correction c_true to first order, lens_calibration.hpp); the principal point is right.
+  const SimRun run = testing::make_sim_run(20.0, 0.5, 13);
+  const double c_true[4] = {-0.005, -0.01, 0.0, 0.0};
+  const double c_bend[4] = {-c_true[0], -c_true[1], 0.0, 0.0};
+  const auto bend = [&](std::size_t, std::vector<FeatureBearing>& features) {
+    for (auto& f : features) f.f_C = corrected_bearing(f.f_C, c_bend);
+  };
+  SlidingWindowConfig c = sim_config(run, 0.5);
+  SlidingWindowEstimator stated(c);  // by default the lens is as stated
+  const RunResult r_stated = run_estimator(stated, run, bend);
+  EXPECT_EQ(stated.lens_correction()[1], 0.0);
+  // k1 alone: the other values stay exactly as stated.
+  c.lens_k1_sigma = 0.005;
+  SlidingWindowEstimator k1_only(c);
+  const RunResult r_k1 = run_estimator(k1_only, run, bend);
+  const std::array<double, 4> lens_k1 = k1_only.lens_correction();
+  EXPECT_EQ(lens_k1[0], 0.0);
+  EXPECT_EQ(lens_k1[2], 0.0);
+  EXPECT_EQ(lens_k1[3], 0.0);
+  EXPECT_LT(lens_k1[1], -0.005);  // k1 takes up the focal error's share too (both bend the rim inwards)
+  EXPECT_LT(r_k1.rmse_position_m, r_stated.rmse_position_m);
+  c.lens_scale_sigma = 0.01;
+  c.lens_k1_sigma = 0.02;
+  c.lens_center_sigma_px = 2.0;
+  SlidingWindowEstimator calibrated(c);
+  const RunResult r_cal = run_estimator(calibrated, run, bend);
+  const std::array<double, 4> lens = calibrated.lens_correction();
+  std::printf("lens correction (%.5f, %.5f, %.2f px, %.2f px) of (%.5f, %.5f, 0, 0); rmse stated %.3f m, calibrated "
+              "%.3f m (k1 only: %.5f, %.3f m); max rot %.3f / %.3f deg\n", lens[0], lens[1], lens[2] * c.focal_px,
+              lens[3] * c.focal_px, c_true[0], c_true[1], r_stated.rmse_position_m, r_cal.rmse_position_m, lens_k1[1],
+              r_k1.rmse_position_m, r_stated.max_rotation_deg,
+              r_cal.max_rotation_deg);
+  EXPECT_EQ(r_cal.not_tracking, 0);
+  EXPECT_NEAR(lens[0], c_true[0], 0.003);  // measured -0.0075: 20 s leave some of it to the biases
+  EXPECT_NEAR(lens[1], c_true[1], 0.004);
+  EXPECT_LT(std::abs(lens[2]) * c.focal_px, 0.5);
+  EXPECT_LT(std::abs(lens[3]) * c.focal_px, 0.5);
+  EXPECT_LT(r_cal.rmse_position_m, 0.5 * r_stated.rmse_position_m);  // measured 0.376 -> 0.139 m
+}
+
+TEST(SlidingWindow, LensCalibrationIsRefusedTogetherWithTheCameraRotation) {
+  SlidingWindowConfig c;
+  c.lens_k1_sigma = 0.005;
+  EXPECT_NO_THROW(c.validate());
+  c.camera_rotation_sigma_deg = 1.0;
+  EXPECT_THROW(c.validate(), InputError);
+  c.lens_k1_sigma = 0.0;
+  EXPECT_NO_THROW(c.validate());
+  c.lens_center_sigma_px = -1.0;
+  EXPECT_THROW(c.validate(), InputError);
 }
 
 }  // namespace

@@ -90,14 +90,29 @@ bool ReprojectionFactor::Evaluate(double const* const* parameters, double* resid
 
 bool ReprojectionFactor::evaluate_with(const Eigen::Matrix3d& R_BC, double const* const* parameters,
                                        double* residuals, double** jacobians, double* dr_dphi) const {
+  return evaluate_impl({R_BC, f_Ca_, nullptr}, parameters, residuals, jacobians, dr_dphi, nullptr);
+}
+
+bool ReprojectionFactor::evaluate_bearings(const Eigen::Vector3d& f_Ca, const Eigen::Vector3d& f_obs,
+                                           double const* const* parameters, double* residuals, double** jacobians,
+                                           double* dr_dfa, double* dr_dfo) const {
+  if (dr_dfo != nullptr) Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>>{dr_dfo} = -scaled_basis_T_;
+  return evaluate_impl({R_BC_, f_Ca, &f_obs}, parameters, residuals, jacobians, nullptr, dr_dfa);
+}
+
+bool ReprojectionFactor::evaluate_impl(const Inputs& in, double const* const* parameters, double* residuals,
+                                       double** jacobians, double* dr_dphi, double* dr_dfa) const {
+  const Eigen::Matrix3d& R_BC = in.R_BC;
   const double rho = parameters[2][0];
-  const Prediction P = predict(parameters[0], parameters[1], rho, f_Ca_, R_BC, t_BC_);
+  const Prediction P = predict(parameters[0], parameters[1], rho, in.f_Ca, R_BC, t_BC_);
   const double n = P.h.norm();
   if (!(n > 0.0) || !std::isfinite(n)) return false;
   const Eigen::Vector3d b = P.h / n;
   // [t1 t2]^T f_Cj = 0, so the residual s [t1 t2]^T (b - f_Cj) is s [t1 t2]^T b.
-  Eigen::Map<Eigen::Vector2d>{residuals} = scaled_basis_T_ * b;
-  if (jacobians == nullptr && dr_dphi == nullptr) return true;
+  Eigen::Map<Eigen::Vector2d> r{residuals};
+  r = scaled_basis_T_ * b;
+  if (in.f_obs != nullptr) r -= scaled_basis_T_ * *in.f_obs;
+  if (jacobians == nullptr && dr_dphi == nullptr && dr_dfa == nullptr) return true;
 
   // Chain rule through the normalization: d(h/|h|)/dh = (I - b b^T) / |h|.
   const Eigen::Matrix<double, 2, 3> dr_dh = scaled_basis_T_ * (Eigen::Matrix3d::Identity() - b * b.transpose()) / n;
@@ -107,8 +122,10 @@ bool ReprojectionFactor::evaluate_with(const Eigen::Matrix3d& R_BC, double const
     // R_BC Exp(phi) enters twice: a = R_BC Exp(phi) f_Ca + ... gives -R_BC [f_Ca]x phi, and
     // h = Exp(-phi) R_BC^T q gives [h]x phi.
     Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>>{dr_dphi} =
-        dr_dh * geometry::skew(P.h) - dr_dw * P.R_a * R_BC * geometry::skew(f_Ca_);
+        dr_dh * geometry::skew(P.h) - dr_dw * P.R_a * R_BC * geometry::skew(in.f_Ca);
   }
+  // a = R_BC f_Ca + rho t_BC, w = R_a a + ...
+  if (dr_dfa != nullptr) Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>>{dr_dfa} = dr_dw * P.R_a * R_BC;
   if (jacobians == nullptr) return true;
   using PoseJacobian = Eigen::Matrix<double, 2, kPoseSize, Eigen::RowMajor>;
   // Pose blocks: p_L + dp enters w linearly; R_LB Exp(dtheta) gives d(R_a a) = -R_a [a]x dtheta for the anchor and

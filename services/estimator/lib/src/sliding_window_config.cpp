@@ -49,6 +49,18 @@ void SlidingWindowConfig::validate() const {
   if (!(camera_rotation_sigma_deg >= 0.0) || !(camera_rotation_sigma_deg <= 10.0)) {
     throw InputError("sliding_window.camera_rotation_sigma_deg: must be in [0, 10] (0: fixed R_BC)");
   }
+  const double lens[] = {lens_scale_sigma, lens_k1_sigma, lens_center_sigma_px};
+  const char* lens_keys[] = {"lens_scale_sigma", "lens_k1_sigma", "lens_center_sigma_px"};
+  for (int i = 0; i < 3; ++i) {
+    if (!(lens[i] >= 0.0) || !(lens[i] <= 100.0)) {
+      throw InputError(std::string("sliding_window.") + lens_keys[i] + ": must be in [0, 100] (0: as stated)");
+    }
+  }
+  const bool lens_on = lens_scale_sigma > 0.0 || lens_k1_sigma > 0.0 || lens_center_sigma_px > 0.0;
+  if (lens_on && camera_rotation_sigma_deg > 0.0) {
+    throw InputError("sliding_window.camera_rotation_sigma_deg: the camera rotation and the lens cannot both be "
+                     "calibrated online (not implemented); set one of them to 0");
+  }
   if (!(world_alignment_random_walk_deg >= 0.0) || !(world_alignment_random_walk_deg <= 10.0)) {
     throw InputError("sliding_window.world_alignment_random_walk_deg: must be in [0, 10] deg/sqrt(s) (0: T_WL constant)");
   }

@@ -266,6 +266,7 @@ const std::optional<LocalMapEstimate>& SlidingWindowEstimator::local_map() const
 std::size_t SlidingWindowEstimator::landmark_count() const { return s_->landmarks.size(); }
 
 Eigen::Isometry3d SlidingWindowEstimator::camera_extrinsics() const { return camera_T_BC(*s_); }
+std::array<double, 4> SlidingWindowEstimator::lens_correction() const { return s_->lens; }
 const SlidingWindowConfig& SlidingWindowEstimator::config() const { return s_->config; }
 std::size_t SlidingWindowEstimator::keyframe_count() const {
   return static_cast<std::size_t>(std::count_if(s_->frames.begin(), s_->frames.end(), [](const auto& f) { return f->keyframe; }));

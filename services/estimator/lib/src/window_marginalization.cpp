@@ -23,8 +23,13 @@ void reanchor_landmarks(WindowState& s, const WindowFrame& k0) {
         const auto b = f.bearings.find(lm.id);
         if (b == f.bearings.end() || !f.keyframe) continue;
         lm.rho = it->second.rho;
-        if (const auto moved = reanchor(lm, k0.T_LB(), f.T_LB(), camera_T_BC(s), f.id, b->second)) {
+        // The landmark's point is along the lens-corrected bearings; the stored bearing stays the stated one.
+        InverseDepthLandmark corrected = lm;
+        corrected.f_Ca = lens_bearing(s, lm.f_Ca);
+        const Eigen::Vector3d f_new = lens_bearing(s, b->second);
+        if (const auto moved = reanchor(corrected, k0.T_LB(), f.T_LB(), camera_T_BC(s), f.id, f_new)) {
           lm = *moved;
+          lm.f_Ca = b->second.normalized();
           it->second.rho = moved->rho;
           keep = true;
         }

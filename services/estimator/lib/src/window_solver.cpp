@@ -9,6 +9,7 @@
 
 #include "twinslam/estimator/camera_calibration.hpp"
 #include "twinslam/estimator/imu_factor.hpp"
+#include "twinslam/estimator/lens_calibration.hpp"
 #include "twinslam/estimator/reprojection_factor.hpp"
 #include "twinslam/estimator/sliding_window_state.hpp"
 #include "twinslam/estimator/state_prior.hpp"
@@ -23,6 +24,10 @@ std::pair<double, bool> reprojection_error_px(WindowState& s, const ResidualTerm
   const WindowLandmark& lm = s.landmarks.at(t.landmark);
   const WindowFrame* anchor = find_frame(s, lm.lm.anchor_keyframe);
   const WindowFrame* frame = find_frame(s, t.frame);
+  if (const auto* lens = dynamic_cast<const LensCalibrationFactor*>(t.cost.get())) {
+    return {lens->angular_error(anchor->pose.data(), frame->pose.data(), lm.rho, s.lens.data()) * s.config.focal_px,
+            lens->in_front(anchor->pose.data(), frame->pose.data(), lm.rho, s.lens.data())};
+  }
   const auto* factor = dynamic_cast<const ReprojectionFactor*>(t.cost.get());
   if (factor == nullptr) factor = &static_cast<const CameraRotationFactor&>(*t.cost).reprojection();
   return {factor->angular_error(anchor->pose.data(), frame->pose.data(), lm.rho, &R_BC) * s.config.focal_px,
@@ -30,12 +35,13 @@ std::pair<double, bool> reprojection_error_px(WindowState& s, const ResidualTerm
 }
 
 // Largest angle [deg] between the anchor keyframe's ray to landmark `id` and another observer's, both in L.
-double current_parallax_deg(const Eigen::Isometry3d& T_BC, const WindowFrame& anchor,
+double current_parallax_deg(const WindowState& s, const Eigen::Isometry3d& T_BC, const WindowFrame& anchor,
                             const std::vector<const WindowFrame*>& observers, std::int64_t id) {
-  const Eigen::Vector3d d_a = (anchor.T_LB().linear() * T_BC.linear() * anchor.bearings.at(id)).normalized();
+  const Eigen::Vector3d d_a =
+      (anchor.T_LB().linear() * T_BC.linear() * lens_bearing(s, anchor.bearings.at(id))).normalized();
   double cos_min = 1.0;
   for (const WindowFrame* f : observers) {
-    const Eigen::Vector3d d = (f->T_LB().linear() * T_BC.linear() * f->bearings.at(id)).normalized();
+    const Eigen::Vector3d d = (f->T_LB().linear() * T_BC.linear() * lens_bearing(s, f->bearings.at(id))).normalized();
     cos_min = std::min(cos_min, d_a.dot(d));
   }
   return std::acos(std::clamp(cos_min, -1.0, 1.0)) * 180.0 / M_PI;
@@ -77,7 +83,7 @@ void triangulate_new_landmarks(WindowState& s) {
         if (!f->keyframe) break;  // anchors must be keyframes: a non-keyframe is dropped with its observations
         c.anchor = f.get();
       }
-      c.obs.push_back({f->T_LB(), it->second});
+      c.obs.push_back({f->T_LB(), lens_bearing(s, it->second)});
     }
     if (c.anchor != nullptr && static_cast<int>(c.obs.size()) >= s.config.min_observations) {
       candidates.push_back(std::move(c));
@@ -117,6 +123,12 @@ SolveSummary solve_window(WindowState& s) {
   }
   const std::vector<ResidualTerm> terms = build_window_terms(s);
   add_to_problem(terms, problem);
+  // The lens values configured with sigma 0 stay as stated (lens_calibration.hpp).
+  std::unique_ptr<ceres::Manifold> lens_manifold;
+  if (problem.HasParameterBlock(s.lens.data())) {
+    lens_manifold = new_lens_manifold(lens_sigmas(c));
+    if (lens_manifold) problem.SetManifold(s.lens.data(), lens_manifold.get());
+  }
   for (auto& [id, lm] : s.landmarks) {
     if (problem.HasParameterBlock(&lm.rho)) problem.SetParameterLowerBound(&lm.rho, 0, 1e-6);
   }
@@ -181,12 +193,13 @@ std::vector<LandmarkEstimate> window_landmarks(const WindowState& s) {
     if (anchor == nullptr || observers.size() < 2) continue;
     LandmarkEstimate e;
     e.id = id;
-    e.p_L = point_in_local(anchor->T_LB(), T_BC, lm.lm.f_Ca, lm.rho);
+    const Eigen::Vector3d f_Ca = lens_bearing(s, lm.lm.f_Ca);
+    e.p_L = point_in_local(anchor->T_LB(), T_BC, f_Ca, lm.rho);
     // Quality in [0, 1]: more observations (saturating at 5), more parallax (saturating at 5 deg) and a smaller
     // reprojection error each raise it; the product is small when any of them is poor. The parallax is that of the
     // keyframes observing it now, not at triangulation: a landmark first triangulated from a short baseline gains
     // parallax as later keyframes see it, and its depth is then as well determined as any other's.
-    const double parallax_deg = std::max(lm.parallax_deg, current_parallax_deg(T_BC, *anchor, observers, id));
+    const double parallax_deg = std::max(lm.parallax_deg, current_parallax_deg(s, T_BC, *anchor, observers, id));
     const double q_obs = std::min(1.0, (static_cast<double>(observers.size()) - 1.0) / 4.0);
     const double q_parallax = std::min(1.0, parallax_deg / 5.0);
     const double q_error = std::clamp(1.0 - lm.mean_error_px / threshold, 0.0, 1.0);
@@ -195,7 +208,7 @@ std::vector<LandmarkEstimate> window_landmarks(const WindowState& s) {
     centres.reserve(observers.size());
     for (const WindowFrame* f : observers) centres.push_back((f->T_LB() * T_BC).translation());
     const Eigen::Isometry3d T_LCa = anchor->T_LB() * T_BC;
-    e.cov_L = landmark_covariance_L(T_LCa.translation(), (T_LCa.linear() * lm.lm.f_Ca).normalized(), lm.rho, centres,
+    e.cov_L = landmark_covariance_L(T_LCa.translation(), (T_LCa.linear() * f_Ca).normalized(), lm.rho, centres,
                                     s.config.pixel_sigma / s.config.focal_px);
     out.push_back(e);
   }

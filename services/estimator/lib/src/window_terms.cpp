@@ -9,6 +9,7 @@
 
 #include "twinslam/estimator/camera_calibration.hpp"
 #include "twinslam/estimator/imu_factor.hpp"
+#include "twinslam/estimator/lens_calibration.hpp"
 #include "twinslam/estimator/reprojection_factor.hpp"
 #include "twinslam/estimator/sliding_window_state.hpp"
 #include "twinslam/estimator/state_prior.hpp"
@@ -60,6 +61,10 @@ void add_prior_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
                               new_camera_rotation_prior(s.config.camera_rotation_sigma_deg * M_PI / 180.0), nullptr,
                               {s.phi_BC.data()}));
   }
+  if (calibrates_lens(s)) {
+    terms.push_back(make_term(TermKind::kCameraPrior, "lens prior", new_lens_prior(lens_sigmas(s.config)), nullptr,
+                              {s.lens.data()}));
+  }
 }
 
 void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
@@ -79,6 +84,9 @@ void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
       if (calibrates_camera(s)) {
         t.cost = std::make_shared<CameraRotationFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
         t.blocks.push_back(s.phi_BC.data());
+      } else if (calibrates_lens(s)) {
+        t.cost = std::make_shared<LensCalibrationFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
+        t.blocks.push_back(s.lens.data());
       } else {
         t.cost = std::make_shared<ReprojectionFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
       }
@@ -92,6 +100,17 @@ void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
 }  // namespace
 
 bool calibrates_camera(const WindowState& s) { return s.config.camera_rotation_sigma_deg > 0.0; }
+
+bool calibrates_lens(const WindowState& s) { return !free_lens_components(lens_sigmas(s.config)).empty(); }
+
+std::array<double, kLensSize> lens_sigmas(const SlidingWindowConfig& c) {
+  const double center_rad = c.lens_center_sigma_px / c.focal_px;
+  return {c.lens_scale_sigma, c.lens_k1_sigma, center_rad, center_rad};
+}
+
+Eigen::Vector3d lens_bearing(const WindowState& s, const Eigen::Vector3d& f) {
+  return calibrates_lens(s) ? corrected_bearing(f, s.lens.data()) : f;
+}
 
 Eigen::Isometry3d camera_T_BC(const WindowState& s) {
   return calibrates_camera(s) ? calibrated_T_BC(s.config.T_BC, s.phi_BC.data()) : s.config.T_BC;

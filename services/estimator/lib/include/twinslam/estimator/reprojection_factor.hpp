@@ -62,6 +62,11 @@ class ReprojectionFactor final : public ceres::SizedCostFunction<2, kPoseSize, k
   // may be null) receives the Jacobian w.r.t. phi of R_BC Exp(phi) at phi = 0, the right perturbation of R_BC.
   bool evaluate_with(const Eigen::Matrix3d& R_BC, double const* const* parameters, double* residuals,
                      double** jacobians, double* dr_dphi) const;
+  // The same with other bearings than the constructed ones (the lens calibration corrects both, lens_calibration.hpp):
+  // anchor bearing f_Ca (unit) and observation f_obs, residual s [t1 t2]^T (b - f_obs) with the constructed f_Cj's
+  // basis. dr_dfa, dr_dfo (2x3 row-major, may be null): Jacobians w.r.t. f_Ca and f_obs.
+  bool evaluate_bearings(const Eigen::Vector3d& f_Ca, const Eigen::Vector3d& f_obs, double const* const* parameters,
+                         double* residuals, double** jacobians, double* dr_dfa, double* dr_dfo) const;
 
   // h = rho p_Cj (see above) for the given blocks; R_BC null: the constructed rotation.
   Eigen::Vector3d predicted_scaled_point(const double* pose_a, const double* pose_j, double rho,
@@ -76,6 +81,14 @@ class ReprojectionFactor final : public ceres::SizedCostFunction<2, kPoseSize, k
   const Eigen::Vector3d& anchor_bearing() const { return f_Ca_; }
 
  private:
+  // Every evaluate_*: R_BC, the anchor bearing, the observation (null: the constructed f_Cj, whose basis term is 0).
+  struct Inputs {
+    const Eigen::Matrix3d& R_BC;
+    const Eigen::Vector3d& f_Ca;
+    const Eigen::Vector3d* f_obs;
+  };
+  bool evaluate_impl(const Inputs& in, double const* const* parameters, double* residuals, double** jacobians,
+                     double* dr_dphi, double* dr_dfa) const;
   Eigen::Vector3d f_Ca_, f_Cj_;
   Eigen::Matrix<double, 2, 3> scaled_basis_T_;  // s [t1 t2]^T
   Eigen::Matrix3d R_BC_;

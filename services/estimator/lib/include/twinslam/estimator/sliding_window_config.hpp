@@ -35,6 +35,17 @@ struct SlidingWindowConfig {
   // Online calibration of the camera rotation (camera_calibration.hpp): prior sigma per axis of R_BC's correction
   // around the nominal T_BC [deg]; 0 keeps R_BC fixed.
   double camera_rotation_sigma_deg = 0.0;
+  // Online correction of the intrinsic calibration (lens_calibration.hpp): prior sigmas of the stated focal length
+  // (relative), k1 [1/rad^2] and principal point [px]; 0 keeps that part as stated (the default: all three).
+  // On the forward-looking, gently accelerating city flights a focal-length correction trades with the VIO's metric
+  // scale (under forward motion, angles scaled by 1 + c look like a path scaled by 1 / (1 + c)) and drifted to -1.6 %
+  // (true -0.3 %; ATE 0.78 -> 3.6 m on city-loops), and the principal point with the camera's mounting (18 px). k1
+  // alone (0.005) settled at -0.003 (true -0.002 plus the focal error's share): city-loops vio 0.778 -> 0.548 m,
+  // vio-twin 0.526 -> 0.332 m, delft-loops vio-twin 0.305 -> 0.228 m; but on a straight flight down a street (forward
+  // motion only, wrong-twin-aliased) it bent the cloud and every registration came out 4.5-5.8 m off: off by default.
+  double lens_scale_sigma = 0.0;       // [1] relative focal-length error
+  double lens_k1_sigma = 0.0;          // [1/rad^2] first radial coefficient on the equidistant angle
+  double lens_center_sigma_px = 0.0;   // [px] principal point
   // The world alignment T_WL as a random walk: each time the oldest keyframe is marginalized, the prior's covariance of
   // T_WL grows by these squared times the seconds it spans. Why: L drifts from W (the VIO's yaw and position drift),
   // so what old registrations and fixes said of T_WL goes stale; without it their information piled up in the prior and

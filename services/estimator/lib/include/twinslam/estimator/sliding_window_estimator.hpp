@@ -13,6 +13,7 @@
 // world_alignment.hpp) is a state of the window too: global measurements act on it through providers' terms, and
 // set_world_alignment() gives it an initial value and prior. The window starts from a static initialization
 // at rest (static_init.hpp) or, in motion, from the closed-form visual-inertial one (motion_init.hpp). Pure library, no DDS.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -110,6 +111,9 @@ class SlidingWindowEstimator {
   // The camera in the body as estimated now: the configured T_BC with its online rotation correction (the configured
   // T_BC itself while config().camera_rotation_sigma_deg is 0).
   Eigen::Isometry3d camera_extrinsics() const;
+  // The window's correction of the stated intrinsics (lens_calibration.hpp: relative focal, k1 [1/rad^2], principal
+  // point over focal [rad] x, y); zeros while config().lens_*_sigma are 0.
+  std::array<double, 4> lens_correction() const;
   const SlidingWindowConfig& config() const;
 
  private:

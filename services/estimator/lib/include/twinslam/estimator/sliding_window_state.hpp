@@ -68,6 +68,9 @@ struct WindowState {
   // Correction of the camera rotation (camera_calibration.hpp), estimated when config.camera_rotation_sigma_deg > 0.
   // Kept across re-initializations: it belongs to the sensor, not to L.
   std::array<double, 3> phi_BC{};
+  // Correction of the intrinsics in bearing space (lens_calibration.hpp), estimated when the config's lens_*_sigma
+  // are > 0; kept across re-initializations like phi_BC.
+  std::array<double, 4> lens{};
 };
 
 // Result of one window solve (window_solver.cpp).
@@ -79,6 +82,11 @@ struct SolveSummary {
 // The camera in the body as the window estimates it now (the nominal config.T_BC unless calibrated online).
 Eigen::Isometry3d camera_T_BC(const WindowState& s);
 bool calibrates_camera(const WindowState& s);
+bool calibrates_lens(const WindowState& s);
+// The prior sigmas of the lens block (lens_calibration.hpp) from the config's lens_* keys.
+std::array<double, 4> lens_sigmas(const SlidingWindowConfig& c);
+// A stated bearing through the lens correction the window estimates now (f itself unless calibrated online).
+Eigen::Vector3d lens_bearing(const WindowState& s, const Eigen::Vector3d& f);
 // Prior sigmas of the first keyframe after a static initialization (config's init_* values).
 StatePriorSigmas static_init_prior_sigmas(const SlidingWindowConfig& c);
 // The window's frame with this id, or null.
