@@ -142,13 +142,12 @@ std::uint32_t EstimatorHandler::frame_faults(const FrameEstimate& e) {
 void EstimatorHandler::log_camera_calibration(std::int64_t stamp_ns) {
   // Every 30 s of data: what the online calibration made of the camera rotation (camera_calibration.hpp).
   const SlidingWindowConfig& c = estimator_.config();
-  const bool lens = c.lens_scale_sigma > 0.0 || c.lens_k1_sigma > 0.0 || c.lens_center_sigma_px > 0.0;
-  if ((c.camera_rotation_sigma_deg <= 0.0 && !lens) ||
+  if ((c.camera_rotation_sigma_deg <= 0.0 && !c.estimates_lens()) ||
       stamp_ns - calibration_logged_ns_ < 30'000'000'000) {
     return;
   }
   calibration_logged_ns_ = stamp_ns;
-  if (lens) {
+  if (c.estimates_lens()) {
     const std::array<double, 4> lens = estimator_.lens_correction();
     spdlog::info("lens correction at {:.1f} s: focal {:+.4f} %, k1 {:+.5f}, principal point ({:+.3f}, {:+.3f}) px",
                  1e-9 * stamp_ns, 100.0 * lens[0], lens[1], lens[2] * c.focal_px, lens[3] * c.focal_px);

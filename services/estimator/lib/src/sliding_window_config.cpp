@@ -56,8 +56,7 @@ void SlidingWindowConfig::validate() const {
       throw InputError(std::string("sliding_window.") + lens_keys[i] + ": must be in [0, 100] (0: as stated)");
     }
   }
-  const bool lens_on = lens_scale_sigma > 0.0 || lens_k1_sigma > 0.0 || lens_center_sigma_px > 0.0;
-  if (lens_on && camera_rotation_sigma_deg > 0.0) {
+  if (estimates_lens() && camera_rotation_sigma_deg > 0.0) {
     throw InputError("sliding_window.camera_rotation_sigma_deg: the camera rotation and the lens cannot both be "
                      "calibrated online (not implemented); set one of them to 0");
   }

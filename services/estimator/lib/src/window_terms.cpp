@@ -101,7 +101,7 @@ void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
 
 bool calibrates_camera(const WindowState& s) { return s.config.camera_rotation_sigma_deg > 0.0; }
 
-bool calibrates_lens(const WindowState& s) { return !free_lens_components(lens_sigmas(s.config)).empty(); }
+bool calibrates_lens(const WindowState& s) { return s.config.estimates_lens(); }
 
 std::array<double, kLensSize> lens_sigmas(const SlidingWindowConfig& c) {
   const double center_rad = c.lens_center_sigma_px / c.focal_px;

@@ -46,6 +46,8 @@ struct SlidingWindowConfig {
   double lens_scale_sigma = 0.0;       // [1] relative focal-length error
   double lens_k1_sigma = 0.0;          // [1/rad^2] first radial coefficient on the equidistant angle
   double lens_center_sigma_px = 0.0;   // [px] principal point
+  // Whether any part of the lens is estimated (a lens_*_sigma > 0).
+  bool estimates_lens() const { return lens_scale_sigma > 0.0 || lens_k1_sigma > 0.0 || lens_center_sigma_px > 0.0; }
   // The world alignment T_WL as a random walk: each time the oldest keyframe is marginalized, the prior's covariance of
   // T_WL grows by these squared times the seconds it spans. Why: L drifts from W (the VIO's yaw and position drift),
   // so what old registrations and fixes said of T_WL goes stale; without it their information piled up in the prior and
