@@ -56,9 +56,16 @@ void SlidingWindowConfig::validate() const {
       throw InputError(std::string("sliding_window.") + lens_keys[i] + ": must be in [0, 100] (0: as stated)");
     }
   }
+  if (!(lens_excitation_deg >= 0.0) || !(lens_excitation_deg <= 180.0)) {
+    throw InputError("sliding_window.lens_excitation_deg: must be in [0, 180] deg (0: always estimated)");
+  }
+  if (!(lens_settle_s >= 0.0) || !(lens_settle_s <= 3600.0)) {
+    throw InputError("sliding_window.lens_settle_s: must be in [0, 3600] s");
+  }
   if (estimates_lens() && camera_rotation_sigma_deg > 0.0) {
     throw InputError("sliding_window.camera_rotation_sigma_deg: the camera rotation and the lens cannot both be "
-                     "calibrated online (not implemented); set one of them to 0");
+                     "calibrated online (not implemented); set it to 0, or every lens_*_sigma to 0 "
+                     "(lens_k1_sigma is 0.005 by default)");
   }
   if (!(world_alignment_random_walk_deg >= 0.0) || !(world_alignment_random_walk_deg <= 10.0)) {
     throw InputError("sliding_window.world_alignment_random_walk_deg: must be in [0, 10] deg/sqrt(s) (0: T_WL constant)");

@@ -46,6 +46,8 @@ void bind_solver_and_init(yaml::Fields& f, SlidingWindowConfig& c) {
       .number("lens_scale_sigma", c.lens_scale_sigma)
       .number("lens_k1_sigma", c.lens_k1_sigma, "1/rad^2")
       .number("lens_center_sigma_px", c.lens_center_sigma_px, "px")
+      .number("lens_excitation_deg", c.lens_excitation_deg, "deg")
+      .number("lens_settle_s", c.lens_settle_s, "s")
       .number("world_alignment_random_walk_deg", c.world_alignment_random_walk_deg, "deg/sqrt(s)")
       .number("world_alignment_random_walk_m", c.world_alignment_random_walk_m, "m/sqrt(s)")
       .number("gravity_mps2", c.gravity_mps2, "m/s^2")

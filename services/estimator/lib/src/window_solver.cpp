@@ -123,11 +123,16 @@ SolveSummary solve_window(WindowState& s) {
   }
   const std::vector<ResidualTerm> terms = build_window_terms(s);
   add_to_problem(terms, problem);
-  // The lens values configured with sigma 0 stay as stated (lens_calibration.hpp).
+  // The lens values configured with sigma 0 stay as stated (lens_calibration.hpp); all are held while the window
+  // does not rotate the camera enough to tell them from depth (lens_excited).
   std::unique_ptr<ceres::Manifold> lens_manifold;
   if (problem.HasParameterBlock(s.lens.data())) {
-    lens_manifold = new_lens_manifold(lens_sigmas(c));
-    if (lens_manifold) problem.SetManifold(s.lens.data(), lens_manifold.get());
+    if (!lens_free(s)) {
+      problem.SetParameterBlockConstant(s.lens.data());
+    } else {
+      lens_manifold = new_lens_manifold(lens_sigmas(c));
+      if (lens_manifold) problem.SetManifold(s.lens.data(), lens_manifold.get());
+    }
   }
   for (auto& [id, lm] : s.landmarks) {
     if (problem.HasParameterBlock(&lm.rho)) problem.SetParameterLowerBound(&lm.rho, 0, 1e-6);

@@ -61,7 +61,7 @@ void add_prior_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
                               new_camera_rotation_prior(s.config.camera_rotation_sigma_deg * M_PI / 180.0), nullptr,
                               {s.phi_BC.data()}));
   }
-  if (calibrates_lens(s)) {
+  if (lens_free(s)) {
     terms.push_back(make_term(TermKind::kCameraPrior, "lens prior", new_lens_prior(lens_sigmas(s.config)), nullptr,
                               {s.lens.data()}));
   }
@@ -70,6 +70,7 @@ void add_prior_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
 void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
   const double sqrt_info = s.config.reprojection_noise().sqrt_information();
   const std::shared_ptr<ceres::LossFunction> loss(new_reprojection_loss(s.config.reprojection_noise()));
+  const bool free_lens = lens_free(s);
   for (auto& [id, lm] : s.landmarks) {
     WindowFrame* anchor = find_frame(s, lm.lm.anchor_keyframe);
     if (anchor == nullptr) continue;  // cannot happen: marginalization re-anchors first
@@ -84,11 +85,13 @@ void add_visual_terms(WindowState& s, std::vector<ResidualTerm>& terms) {
       if (calibrates_camera(s)) {
         t.cost = std::make_shared<CameraRotationFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
         t.blocks.push_back(s.phi_BC.data());
-      } else if (calibrates_lens(s)) {
+      } else if (free_lens) {
         t.cost = std::make_shared<LensCalibrationFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
         t.blocks.push_back(s.lens.data());
       } else {
-        t.cost = std::make_shared<ReprojectionFactor>(lm.lm.f_Ca, it->second, s.config.T_BC, sqrt_info);
+        // The lens held (or not estimated): the fixed factor on the bearings corrected as the window has them.
+        t.cost = std::make_shared<ReprojectionFactor>(lens_bearing(s, lm.lm.f_Ca), lens_bearing(s, it->second),
+                                                      s.config.T_BC, sqrt_info);
       }
       t.landmark = id;
       t.frame = f->id;
@@ -108,8 +111,30 @@ std::array<double, kLensSize> lens_sigmas(const SlidingWindowConfig& c) {
   return {c.lens_scale_sigma, c.lens_k1_sigma, center_rad, center_rad};
 }
 
+bool lens_excited(const WindowState& s) {
+  if (s.frames.empty() || s.first_frame_ns < 0 ||
+      static_cast<double>(s.frames.back()->stamp_ns - s.first_frame_ns) < s.config.lens_settle_s * 1e9) {
+    return false;
+  }
+  // The largest angle between two frames' optical axes in L (the window holds a handful of frames).
+  const Eigen::Matrix3d R_BC = camera_T_BC(s).linear();
+  std::vector<Eigen::Vector3d> axes;
+  for (const auto& f : s.frames) axes.push_back(f->T_LB().linear() * R_BC.col(2));
+  const double min_cos = std::cos(s.config.lens_excitation_deg * M_PI / 180.0);
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    for (std::size_t j = i + 1; j < axes.size(); ++j) {
+      if (axes[i].dot(axes[j]) <= min_cos) return true;
+    }
+  }
+  return s.config.lens_excitation_deg <= 0.0;
+}
+
+bool lens_free(const WindowState& s) { return calibrates_lens(s) && lens_excited(s); }
+
 Eigen::Vector3d lens_bearing(const WindowState& s, const Eigen::Vector3d& f) {
-  return calibrates_lens(s) ? corrected_bearing(f, s.lens.data()) : f;
+  // A zero correction returns f itself, bit for bit: until the lens is first freed the window is the fixed-lens one.
+  const bool zero = s.lens[0] == 0.0 && s.lens[1] == 0.0 && s.lens[2] == 0.0 && s.lens[3] == 0.0;
+  return calibrates_lens(s) && !zero ? corrected_bearing(f, s.lens.data()) : f;
 }
 
 Eigen::Isometry3d camera_T_BC(const WindowState& s) {

@@ -85,6 +85,13 @@ bool calibrates_camera(const WindowState& s);
 bool calibrates_lens(const WindowState& s);
 // The prior sigmas of the lens block (lens_calibration.hpp) from the config's lens_* keys.
 std::array<double, 4> lens_sigmas(const SlidingWindowConfig& c);
+// Whether the camera's optical axis spans config.lens_excitation_deg over the window's frames, config.lens_settle_s
+// after the (re)start; else the lens is held in the solve (straight forward flight cannot tell k1 from depth and
+// scale, nor can a window whose biases and scale are still settling).
+bool lens_excited(const WindowState& s);
+// Whether this solve estimates the lens: calibrated online and excited. Else the reprojections use the fixed factor on
+// lens_bearing()s and the lens block, if the marginalization prior still holds it, is constant.
+bool lens_free(const WindowState& s);
 // A stated bearing through the lens correction the window estimates now (f itself unless calibrated online).
 Eigen::Vector3d lens_bearing(const WindowState& s, const Eigen::Vector3d& f);
 // Prior sigmas of the first keyframe after a static initialization (config's init_* values).
