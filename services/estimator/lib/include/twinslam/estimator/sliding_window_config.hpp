@@ -46,10 +46,10 @@ struct SlidingWindowConfig {
   double lens_k1_sigma = 0.005;        // [1/rad^2] first radial coefficient on the equidistant angle
   double lens_center_sigma_px = 0.0;   // [px] principal point
   // The lens values are estimated only while the camera's optical axis spans at least this angle over the window's
-  // keyframes, and held otherwise: a rotating camera sweeps a landmark across the image, which separates the lens's
-  // radial profile from depth and scale; straight forward flight does not (on
-  // wrong-twin-aliased, a straight street seen through an ideal lens, k1 estimated throughout drifted to -0.0055 and
-  // every accepted registration came out 4.5-5.8 m off).
+  // frames (0: always), and held otherwise: a rotating camera sweeps a landmark across the image, which separates the
+  // lens's radial profile from depth and scale; straight forward flight does not (on wrong-twin-aliased, a straight
+  // street seen through an ideal lens, k1 estimated throughout drifted to -0.0055 and every accepted registration came
+  // out 4.5-5.8 m off).
   double lens_excitation_deg = 10.0;   // [deg]
   // Nor in the first seconds after a (re)start, while the biases, gravity and metric scale settle: a lens freed then
   // takes up their errors. On wrong-twin-aliased (ideal lens; the first 10 s turn the camera up to 20 deg) k1 freed from
