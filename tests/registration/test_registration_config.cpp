@@ -54,6 +54,10 @@ TEST(RegistrationConfig, ErrorsNameFileLineAndKey) {
             "r.yaml: registration key 'correlation_inflation': must be >= 1, got 0.500000");
   EXPECT_EQ(message("persistent_corrections: -1\n"),
             "r.yaml: registration key 'persistent_corrections': must lie in [0, 100] (0: off), got -1.000000");
+  EXPECT_EQ(message("scale_prior_walk: -0.1\n"),
+            "r.yaml: registration key 'scale_prior_walk': must be >= 0 /sqrt(s) (0: off), got -0.100000");
+  EXPECT_EQ(message("scale_prior_measurement_sigma: 0\n"),
+            "r.yaml: registration key 'scale_prior_measurement_sigma': must be > 0, got 0.000000");
   EXPECT_EQ(message("- a\n- b\n"), "r.yaml: expected a YAML mapping of registration keys");
   EXPECT_NE(message("a: [1,\n").find("r.yaml:"), std::string::npos);  // malformed YAML names the file
   EXPECT_EQ(message(""), "no error");

@@ -133,14 +133,17 @@ void RegistrationHandler::register_map(const msg::LocalMap& m, msg::Registration
       counters_.add("covariance_unusable");
     }
   }
-  RegistrationResult r = register_cloud(options_.registration, twin_.index(), source, covariance);
+  const auto stamp_ns = static_cast<std::int64_t>(m.keyframe_stamp_ns());
+  ScaleTracker& scale = scale_.try_emplace(m.vehicle_id(), options_.registration).first->second;
+  RegistrationResult r = register_cloud(options_.registration, twin_.index(), source, covariance, scale.prior(stamp_ns));
   PersistenceGate& gate = persistence_.try_emplace(m.vehicle_id(), options_.registration).first->second;
   std::optional<double> heading_sigma_deg;  // about W's z: the covariance's rotation block comes first
   if (covariance) heading_sigma_deg = std::sqrt((*covariance)(2, 2)) * 180.0 / M_PI;
-  if (gate.review(r, static_cast<std::int64_t>(m.keyframe_stamp_ns()), heading_sigma_deg)) {
+  if (gate.review(r, stamp_ns, heading_sigma_deg)) {
     counters_.add("readmitted_persistent");
     out.readmitted(true);
   }
+  scale.update(stamp_ns, r.accepted(), r.scale);
   inject_fault(m, r);
   out.status(to_msg(r.status));
   out.reason(r.reason);

@@ -11,6 +11,7 @@
 #include "twinslam/dds/heartbeat.hpp"
 #include "twinslam/registration/persistence_gate.hpp"
 #include "twinslam/registration/registration.hpp"
+#include "twinslam/registration/scale_tracker.hpp"
 #include "twinslam/registration/windowed_twin.hpp"
 
 namespace twinslam::registration {
@@ -53,6 +54,7 @@ class RegistrationHandler {
   RegistrationNodeOptions options_;
   WindowedTwin twin_;
   std::map<std::string, PersistenceGate> persistence_;  // per vehicle
+  std::map<std::string, ScaleTracker> scale_;           // per vehicle
   std::map<std::string, std::int64_t> first_stamp_ns_;  // per vehicle: its first LocalMap served (faults)
   unsigned long long seq_ = 0;
 };

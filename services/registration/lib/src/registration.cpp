@@ -109,7 +109,8 @@ const char* status_name(RegistrationStatus status) {
 }
 
 RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTileIndex& index,
-                                  const SourceInput& source, const std::optional<Matrix6d>& prior_covariance) {
+                                  const SourceInput& source, const std::optional<Matrix6d>& prior_covariance,
+                                  const std::optional<ScalePrior>& scale_prior) {
   if (prior_covariance) check_covariance(*prior_covariance);
   RegistrationResult r;
   const auto t0 = Clock::now();
@@ -127,7 +128,8 @@ RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTi
   const auto t1 = Clock::now();
   std::optional<double> heading_sigma_deg;
   if (prior_covariance) heading_sigma_deg = std::sqrt((*prior_covariance)(2, 2)) * 180.0 / M_PI;  // about W's z
-  const YawSearchResult search = run_icp_with_yaw_search(config, index, cloud.p_W, cloud.cov_W, cloud.p_WB, heading_sigma_deg);
+  const YawSearchResult search = run_icp_with_yaw_search(config, index, cloud.p_W, cloud.cov_W, cloud.p_WB, heading_sigma_deg,
+                                                          scale_prior);
   const IcpResult& icp = search.icp;
   r.time.icp_ms = ms_since(t1);
   r.yaw_starts = search.starts;
@@ -137,6 +139,7 @@ RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTi
   r.inliers = icp.inliers.size();
   r.fitness = static_cast<double>(r.inliers) / static_cast<double>(r.source_points);
   r.iterations = icp.iterations;
+  r.scale = icp.scale;
   const auto t2 = Clock::now();
   r.details = compute_information(config, icp.inliers, icp.rmse_m, icp.sigma_m);
   r.information_eigenvalues = r.details.eigenvalues;

@@ -70,6 +70,8 @@ const std::vector<Key>& keys() {
       {"mahalanobis_floor_m", &C::mahalanobis_floor_m},
       {"mahalanobis_floor_deg", &C::mahalanobis_floor_deg},
       {"estimate_scale", &C::estimate_scale},
+      {"scale_prior_walk", &C::scale_prior_walk},
+      {"scale_prior_measurement_sigma", &C::scale_prior_measurement_sigma},
       {"persistent_corrections", &C::persistent_corrections},
       {"persistent_tolerance_m", &C::persistent_tolerance_m},
       {"persistent_tolerance_deg", &C::persistent_tolerance_deg},
@@ -162,6 +164,9 @@ void RegistrationConfig::validate(const std::string& s) const {
         yaw_search_max_deg);
   check(std::isfinite(yaw_search_ambiguity) && yaw_search_ambiguity > 0.0 && yaw_search_ambiguity <= 1.0, s,
         "yaw_search_ambiguity", "must lie in (0, 1]", yaw_search_ambiguity);
+  check(nonneg(scale_prior_walk), s, "scale_prior_walk", "must be >= 0 /sqrt(s) (0: off)", scale_prior_walk);
+  check(pos(scale_prior_measurement_sigma), s, "scale_prior_measurement_sigma", "must be > 0",
+        scale_prior_measurement_sigma);
   check(pos(paper_beta), s, "paper_beta", "must be > 0", paper_beta);
   check(std::isfinite(correlation_inflation) && correlation_inflation >= 1.0, s, "correlation_inflation",
         "must be >= 1", correlation_inflation);

@@ -35,14 +35,15 @@ std::size_t yaw_support(const RegistrationConfig& config, const IcpResult& icp) 
 YawSearchResult run_icp_with_yaw_search(const RegistrationConfig& config, const TwinTileIndex& index,
                                         const std::vector<Eigen::Vector3d>& p_W,
                                         const std::vector<Eigen::Matrix3d>& cov_W, const Eigen::Vector3d& pivot_W,
-                                        std::optional<double> heading_sigma_deg) {
+                                        std::optional<double> heading_sigma_deg,
+                                        const std::optional<ScalePrior>& scale_prior) {
   const std::vector<double> starts = yaw_starts_deg(config, heading_sigma_deg);
   YawSearchResult out;
   out.starts = static_cast<int>(starts.size());
   std::vector<std::pair<double, std::size_t>> results;  // (final heading offset [deg], support) of every start
   for (const double yaw : starts) {
     const Eigen::Matrix3d dR0 = Eigen::AngleAxisd(yaw * kDegToRad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    IcpResult icp = run_icp(config, index, p_W, cov_W, pivot_W, dR0);
+    IcpResult icp = run_icp(config, index, p_W, cov_W, pivot_W, dR0, scale_prior);
     const std::size_t support = icp.converged ? yaw_support(config, icp) : 0;
     results.emplace_back(heading_deg(icp.dR), support);
     // Strictly better only: on a tie the start nearer the estimator's own heading (earlier in the list) stays.

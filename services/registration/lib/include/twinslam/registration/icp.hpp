@@ -18,6 +18,7 @@
 // residual is weighted by w_j = surface^2 / (surface^2 + n^T C_j n), 1 for a perfect landmark: the paper weighs every
 // landmark the same, and VIO depths 40 m away are metres off (measured on city-loops: median |depth error| 0.85 m at
 // 30-45 m, 0.15-0.2 m at 10-20 m).
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -62,10 +63,19 @@ struct IcpResult {
 Eigen::Isometry3d correction_about(const Eigen::Matrix3d& dR, const Eigen::Vector3d& dp,
                                    const Eigen::Vector3d& pivot_W);
 
+// A prior on the cloud's log-scale (7-DoF ICP only): ln s ~ N(log_scale, sigma^2). ICP adds it to eq. (2) as one more
+// residual, (ln s - log_scale) / sigma in units of the kernel's sigma, so it weighs like that many inliers' worth of
+// scale information rather than a fixed amount.
+struct ScalePrior {
+  double log_scale = 0.0;  // [-]
+  double sigma = 0.0;      // [-] > 0
+};
+
 // Starts at the correction dR0 about the pivot (identity: the estimator's T_WL as it is). cov_W: the covariance of
 // each p_W [m^2] (empty: unknown, every weight 1). Deterministic.
 IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, const std::vector<Eigen::Vector3d>& p_W,
                   const std::vector<Eigen::Matrix3d>& cov_W, const Eigen::Vector3d& pivot_W,
-                  const Eigen::Matrix3d& dR0 = Eigen::Matrix3d::Identity());
+                  const Eigen::Matrix3d& dR0 = Eigen::Matrix3d::Identity(),
+                  const std::optional<ScalePrior>& scale_prior = std::nullopt);
 
 }  // namespace twinslam::registration

@@ -42,6 +42,7 @@ struct RegistrationResult {
   double rmse_m = 0.0;
   std::size_t source_points = 0, inliers = 0;
   double fitness = 0.0;  // inliers / source points
+  double scale = 1.0;    // ICP's scale of the cloud about the pivot (1 unless estimate_scale), not in correction_W
   int iterations = 0;
   int yaw_starts = 1;  // ICP runs of the heading search (yaw_search.hpp); 1 when the estimator is sure of its heading
   bool heading_ambiguous = false;  // refused because another heading fit almost as well (correction: the best one's)
@@ -52,9 +53,11 @@ struct RegistrationResult {
 
 // prior_covariance: the estimator's 6x6 covariance of the keyframe pose in the same (rotation [rad^2], translation
 // [m^2]) order and convention as the correction (left rotation about p_WB, position in W); nothing skips that test.
+// scale_prior: on ICP's log-scale (icp.hpp; scale_tracker.hpp keeps one per vehicle).
 // Throws InputError for bad input (preprocess) or a covariance that is not finite, symmetric and positive definite.
 RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTileIndex& index,
                                   const SourceInput& source,
-                                  const std::optional<Matrix6d>& prior_covariance = std::nullopt);
+                                  const std::optional<Matrix6d>& prior_covariance = std::nullopt,
+                                  const std::optional<ScalePrior>& scale_prior = std::nullopt);
 
 }  // namespace twinslam::registration

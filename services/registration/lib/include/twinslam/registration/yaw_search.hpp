@@ -32,6 +32,7 @@ std::size_t yaw_support(const RegistrationConfig& config, const IcpResult& icp);
 YawSearchResult run_icp_with_yaw_search(const RegistrationConfig& config, const TwinTileIndex& index,
                                         const std::vector<Eigen::Vector3d>& p_W,
                                         const std::vector<Eigen::Matrix3d>& cov_W, const Eigen::Vector3d& pivot_W,
-                                        std::optional<double> heading_sigma_deg);
+                                        std::optional<double> heading_sigma_deg,
+                                        const std::optional<ScalePrior>& scale_prior = std::nullopt);
 
 }  // namespace twinslam::registration
