@@ -66,18 +66,18 @@ double robust_sigma(const std::vector<Correspondence>& corr, bool plane) {
   return kMadToSigma * median(std::move(v));
 }
 
-struct NormalEquations {
-  Matrix7d JtJ = Matrix7d::Zero();
-  Vector7d Jtr = Vector7d::Zero();
-  double radius = 1.0;  // RMS distance of the points from the pivot (>= 1 m): the rotation and scale columns' unit
-};
-
-// The Geman-McClure-weighted normal equations of eq. (2) in x = (w, v, sigma) (rotation, translation, log-scale).
+// One Gauss-Newton step x = (w, v, sigma) (rotation, translation, log-scale) of the Geman-McClure-weighted eq. (2),
+// for the update a' = e^sigma Exp(w) a + v; sigma stays 0 unless `with_scale`. The normal equations are solved in units
+// where rotation and scale are scaled by the cloud's radius, so that a pseudo-inverse can leave out unobservable
+// directions (a single plane; the scale column when not estimated) instead of taking a huge step along them. A single
+// plane seen from afar leaves scale and the shift along its normal nearly inseparable (a scale about the keyframe
+// moves it like a shift): ICP then does not settle within its iterations and the result is refused (not converged).
 // The scale prior (ScalePrior) adds (ln s - mu)^2 k^2 / sigma^2 to the cost: the point residuals are in metres with
 // weight 1 at r = 0, i.e. measured in units of the kernel k.
-NormalEquations normal_equations(const std::vector<Correspondence>& corr, double kernel, bool with_scale,
-                                 double log_scale, const std::optional<ScalePrior>& prior) {
-  NormalEquations ne;
+Vector7d gauss_newton_step(const std::vector<Correspondence>& corr, double kernel, bool with_scale, double log_scale,
+                           const std::optional<ScalePrior>& prior) {
+  Matrix7d JtJ = Matrix7d::Zero();
+  Vector7d Jtr = Vector7d::Zero();
   double radius_sq = 0.0;
   const double k2 = kernel * kernel;
   for (const Correspondence& k : corr) {
@@ -85,35 +85,24 @@ NormalEquations normal_equations(const std::vector<Correspondence>& corr, double
     J << k.a.cross(k.n), k.n, with_scale ? k.n.dot(k.a) : 0.0;
     const double d = k2 + k.residual * k.residual;
     const double w = k.weight * k2 * k2 / (d * d);  // Geman-McClure: rho'(r) / r, 1 at r = 0; times w_j
-    ne.JtJ.noalias() += w * J * J.transpose();
-    ne.Jtr.noalias() += w * J * k.residual;
+    JtJ.noalias() += w * J * J.transpose();
+    Jtr.noalias() += w * J * k.residual;
     radius_sq += k.a.squaredNorm();
   }
   if (with_scale && prior) {
     const double w = k2 / (prior->sigma * prior->sigma);
-    ne.JtJ(6, 6) += w;
-    ne.Jtr(6) += w * (log_scale - prior->log_scale);
+    JtJ(6, 6) += w;
+    Jtr(6) += w * (log_scale - prior->log_scale);
   }
-  ne.radius = std::max(1.0, std::sqrt(radius_sq / static_cast<double>(corr.size())));
-  return ne;
-}
-
-// One Gauss-Newton step x = (w, v, sigma) for the update a' = e^sigma Exp(w) a + v; sigma stays 0 unless `with_scale`.
-// The normal equations are solved in units where rotation and scale are scaled by the cloud's radius, so that a
-// pseudo-inverse can leave out unobservable directions (a single plane; the scale column when not estimated) instead
-// of taking a huge step along them. A single plane seen from afar leaves scale and the shift along its normal nearly
-// inseparable (a scale about the keyframe moves it like a shift): ICP then does not settle within its iterations and
-// the result is refused (not converged).
-Vector7d gauss_newton_step(const NormalEquations& ne) {
-  const double L = ne.radius;
+  const double L = std::max(1.0, std::sqrt(radius_sq / static_cast<double>(corr.size())));
   Vector7d s;
   s << Eigen::Vector3d::Constant(1.0 / L), Eigen::Vector3d::Ones(), 1.0 / L;
-  const Matrix7d Hs = s.asDiagonal() * ne.JtJ * s.asDiagonal();
+  const Matrix7d Hs = s.asDiagonal() * JtJ * s.asDiagonal();
   const Eigen::SelfAdjointEigenSolver<Matrix7d> eig(Hs);
   const double floor = 1e-9 * std::max(eig.eigenvalues().maxCoeff(), 1e-300);
   Vector7d inv = eig.eigenvalues();
   for (int i = 0; i < 7; ++i) inv(i) = inv(i) > floor ? 1.0 / inv(i) : 0.0;
-  const Vector7d xs = -eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() * (s.asDiagonal() * ne.Jtr);
+  const Vector7d xs = -eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() * (s.asDiagonal() * Jtr);
   return s.asDiagonal() * xs;
 }
 
@@ -190,7 +179,7 @@ IcpResult run_icp(const RegistrationConfig& config, const TwinTileIndex& index, 
     // KISS-ICP's adaptive threshold: the gate follows 3 sigma of the distances (never growing, never below the
     // floor), and the kernel scale is that sigma, so far correspondences lose weight smoothly as alignment improves.
     const double sigma = std::max(robust_sigma(corr, false), config.min_threshold_m / config.threshold_sigmas);
-    x = gauss_newton_step(normal_equations(corr, sigma, config.estimate_scale, std::log(pose.s), scale_prior));
+    x = gauss_newton_step(corr, sigma, config.estimate_scale, std::log(pose.s), scale_prior);
     // Two correspondence sets that each pull the pose to the other's side make ICP alternate between two poses for
     // ever (bench_registration: steps of +-1 mm until the iteration limit, 1 % of its keyframes, the p99 time). When
     // this step undoes the last one and both are small (< 100 x the convergence thresholds: 1 cm, 0.1 deg), the
