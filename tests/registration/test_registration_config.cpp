@@ -58,6 +58,10 @@ TEST(RegistrationConfig, ErrorsNameFileLineAndKey) {
             "r.yaml: registration key 'scale_prior_walk': must be >= 0 /sqrt(s) (0: off), got -0.100000");
   EXPECT_EQ(message("scale_prior_measurement_sigma: 0\n"),
             "r.yaml: registration key 'scale_prior_measurement_sigma': must be > 0, got 0.000000");
+  EXPECT_EQ(message("scale_prior_max_heading_sigma_deg: 0\n"),
+            "r.yaml: registration key 'scale_prior_max_heading_sigma_deg': must be > 0 deg, got 0.000000");
+  EXPECT_EQ(message("scale_prior_max_position_sigma_m: -1\n"),
+            "r.yaml: registration key 'scale_prior_max_position_sigma_m': must be > 0 m, got -1.000000");
   EXPECT_EQ(message("- a\n- b\n"), "r.yaml: expected a YAML mapping of registration keys");
   EXPECT_NE(message("a: [1,\n").find("r.yaml:"), std::string::npos);  // malformed YAML names the file
   EXPECT_EQ(message(""), "no error");

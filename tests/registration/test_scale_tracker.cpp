@@ -1,5 +1,6 @@
 // ScaleTracker: the per-vehicle scale prior starts with the first accepted registration, loosens with time between
-// registrations (the random walk), tightens with each accepted one, and ignores rejected ones and nonsense scales.
+// registrations (the random walk), tightens with each accepted one, and ignores rejected ones and nonsense scales;
+// scale_prior_applies: it applies only to keyframes the estimator is settled on.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,6 +70,34 @@ TEST(RegistrationScaleTracker, OffWithoutAWalkOrWithoutScale) {
   ScaleTracker t(rigid);
   t.update(at(0), true, 1.0);
   EXPECT_FALSE(t.prior(at(1)));
+}
+
+// A keyframe covariance (rotation first) with the given heading sigma about W's z and position sigma per axis.
+Matrix6d keyframe_covariance(double heading_sigma_deg, double position_sigma_per_axis_m) {
+  Matrix6d P = Matrix6d::Zero();
+  const double h = heading_sigma_deg * M_PI / 180.0;
+  P.diagonal() << 1e-6, 1e-6, h * h, Eigen::Vector3d::Constant(position_sigma_per_axis_m * position_sigma_per_axis_m);
+  return P;
+}
+
+TEST(RegistrationScaleTracker, AppliesOnlyOnceTheEstimatorHasSettled) {
+  RegistrationConfig c = with_walk(0.003);
+  c.scale_prior_max_heading_sigma_deg = 0.25;
+  c.scale_prior_max_position_sigma_m = 0.25;
+  // delft-loops at 18 s (the GNSS alignment just declared, twin corrections being fused): not yet ...
+  EXPECT_FALSE(scale_prior_applies(c, keyframe_covariance(0.41, 0.16)));
+  // ... position sigma 0.4 m (sqrt of the trace: 0.23 m per axis) with a good heading: not yet either ...
+  EXPECT_FALSE(scale_prior_applies(c, keyframe_covariance(0.1, 0.23)));
+  // ... at 28 s, settled: heading 0.22 deg, position 0.18 m.
+  EXPECT_TRUE(scale_prior_applies(c, keyframe_covariance(0.22, 0.18 / std::sqrt(3.0))));
+  // No covariance sent, or one that is not a number: never.
+  EXPECT_FALSE(scale_prior_applies(c, std::nullopt));
+  Matrix6d nan = keyframe_covariance(0.1, 0.05);
+  nan(2, 2) = std::nan("");
+  EXPECT_FALSE(scale_prior_applies(c, nan));
+  nan = keyframe_covariance(0.1, 0.05);
+  nan(4, 4) = std::nan("");
+  EXPECT_FALSE(scale_prior_applies(c, nan));
 }
 
 }  // namespace

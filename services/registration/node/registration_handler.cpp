@@ -135,7 +135,9 @@ void RegistrationHandler::register_map(const msg::LocalMap& m, msg::Registration
   }
   const auto stamp_ns = static_cast<std::int64_t>(m.keyframe_stamp_ns());
   ScaleTracker& scale = scale_.try_emplace(m.vehicle_id(), options_.registration).first->second;
-  RegistrationResult r = register_cloud(options_.registration, twin_.index(), source, covariance, scale.prior(stamp_ns));
+  const std::optional<ScalePrior> scale_prior =
+      scale_prior_applies(options_.registration, covariance) ? scale.prior(stamp_ns) : std::nullopt;
+  RegistrationResult r = register_cloud(options_.registration, twin_.index(), source, covariance, scale_prior);
   PersistenceGate& gate = persistence_.try_emplace(m.vehicle_id(), options_.registration).first->second;
   std::optional<double> heading_sigma_deg;  // about W's z: the covariance's rotation block comes first
   if (covariance) heading_sigma_deg = std::sqrt((*covariance)(2, 2)) * 180.0 / M_PI;

@@ -72,6 +72,8 @@ const std::vector<Key>& keys() {
       {"estimate_scale", &C::estimate_scale},
       {"scale_prior_walk", &C::scale_prior_walk},
       {"scale_prior_measurement_sigma", &C::scale_prior_measurement_sigma},
+      {"scale_prior_max_heading_sigma_deg", &C::scale_prior_max_heading_sigma_deg},
+      {"scale_prior_max_position_sigma_m", &C::scale_prior_max_position_sigma_m},
       {"persistent_corrections", &C::persistent_corrections},
       {"persistent_tolerance_m", &C::persistent_tolerance_m},
       {"persistent_tolerance_deg", &C::persistent_tolerance_deg},
@@ -167,6 +169,10 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(nonneg(scale_prior_walk), s, "scale_prior_walk", "must be >= 0 /sqrt(s) (0: off)", scale_prior_walk);
   check(pos(scale_prior_measurement_sigma), s, "scale_prior_measurement_sigma", "must be > 0",
         scale_prior_measurement_sigma);
+  check(pos(scale_prior_max_heading_sigma_deg), s, "scale_prior_max_heading_sigma_deg", "must be > 0 deg",
+        scale_prior_max_heading_sigma_deg);
+  check(pos(scale_prior_max_position_sigma_m), s, "scale_prior_max_position_sigma_m", "must be > 0 m",
+        scale_prior_max_position_sigma_m);
   check(pos(paper_beta), s, "paper_beta", "must be > 0", paper_beta);
   check(std::isfinite(correlation_inflation) && correlation_inflation >= 1.0, s, "correlation_inflation",
         "must be >= 1", correlation_inflation);

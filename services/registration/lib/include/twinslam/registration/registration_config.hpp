@@ -61,10 +61,13 @@ struct RegistrationConfig {
   // position).
   bool estimate_scale = true;
   // A slowly varying scale per vehicle (scale_tracker.hpp) as a prior on each 7-DoF ICP's log-scale, against surfaces
-  // that moved since the twin was made. Its ln s wanders by a random walk of this [1/sqrt(s)]; 0: no prior (default:
-  // it lags a fast real change of the VIO scale; measured in scale_tracker.hpp). 0.003 is the measured setting.
-  double scale_prior_walk = 0.0;
+  // that moved since the twin was made. Its ln s wanders by a random walk of this [1/sqrt(s)]; 0: no prior.
+  double scale_prior_walk = 0.003;
   double scale_prior_measurement_sigma = 0.006;  // each accepted registration's ln s as a measurement of it [-]
+  // ... applied only to a keyframe whose covariance (LocalMap.T_WB_covariance) says the estimator has settled: while
+  // the twin corrections are still reshaping its map, the VIO scale changes within seconds (scale_tracker.hpp).
+  double scale_prior_max_heading_sigma_deg = 0.25;  // the keyframe's heading sigma must be below this [deg] ...
+  double scale_prior_max_position_sigma_m = 0.25;   // ... and sqrt(trace) of its position covariance below this [m]
   // Heading search (yaw_search.hpp): when the estimator's heading sigma is above yaw_search_min_sigma_deg, ICP also
   // starts from headings rotated about the body by multiples of yaw_search_step_deg within +-min(3 sigma,
   // yaw_search_max_deg), and the start whose result the twin supports best wins.
