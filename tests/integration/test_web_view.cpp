@@ -24,7 +24,9 @@ const fs::path& base() {
 
 TEST(WebView, ChromiumSeesTheTilesAndAGrowingTrajectoryDuringATinyRun) {
   fs::remove_all(base());
-  const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--out",
+  // 60 s of flight rather than tiny's 30: on a loaded machine chromium and SwiftShader once took longer than the
+  // whole 30 s run to show the first frame, and nothing grew after it.
+  const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--duration", "60", "--out",
                                       (base() / "tiny").string(), "--features", "--quiet"},
                                      {}, std::chrono::seconds(180));
   ASSERT_EQ(sim.exit_code, 0) << sim.out << sim.err;
@@ -33,7 +35,7 @@ TEST(WebView, ChromiumSeesTheTilesAndAGrowingTrajectoryDuringATinyRun) {
   const auto none = test::run_process({test::bin("twinslam"), "view", "--no-open", "--port", port});
   EXPECT_EQ(none.exit_code, 2) << none.out << none.err;
   EXPECT_NE(none.err.find("no bridge answers at 127.0.0.1:" + port), std::string::npos) << none.err;
-  // The browser test first: it retries until the bridge serves the page. Real time, so the run lasts ~30 s on screen.
+  // The browser test first: it retries until the bridge serves the page. Real time, so the run lasts ~60 s on screen.
   test::Background browser({TWINSLAM_NODE, std::string(TWINSLAM_SOURCE_DIR) + "/tests/node/web_view.test.mjs"},
                            {{"TWINSLAM_VIEW_URL", "http://127.0.0.1:" + port + "/"},
                             {"TWINSLAM_VIEW_SHOTS", (base() / "shots").string()},
@@ -50,7 +52,7 @@ TEST(WebView, ChromiumSeesTheTilesAndAGrowingTrajectoryDuringATinyRun) {
   }
   EXPECT_EQ(view.exit_code, 0) << view.out << view.err;
   EXPECT_NE(view.out.find("web view: http://127.0.0.1:" + port + "/"), std::string::npos) << view.out;
-  EXPECT_EQ(browser.wait(std::chrono::seconds(240)), 0) << browser.output();
+  EXPECT_EQ(browser.wait(std::chrono::seconds(360)), 0) << browser.output();
   EXPECT_EQ(run.wait(std::chrono::seconds(240)), 0) << run.output();
   EXPECT_TRUE(fs::is_regular_file(base() / "shots" / "view-1.png"));
   EXPECT_TRUE(fs::is_regular_file(base() / "shots" / "view-2.png"));

@@ -86,6 +86,20 @@ function ready() {
   return hasPath && view.frames > 0 && view.renderedMessages > 0;
 }
 
+// Runs in the page: how many estimate poses it holds and how many frames it has drawn.
+function progress() {
+  const view = window.twinslamView;
+  const poses = Object.values(view.poses || {}).reduce((n, p) => n + (p.estimate || 0), 0);
+  return { poses, frames: view.frames, state: view.state };
+}
+
+// Runs in the page: poses arrived since `before` and a frame has been drawn since they did (or the run is over).
+function grown(before) {
+  const view = window.twinslamView;
+  const poses = Object.values(view.poses || {}).reduce((n, p) => n + (p.estimate || 0), 0);
+  return (poses >= before.poses + 3 && view.frames > before.frames) || view.state === 'disconnected';
+}
+
 async function shot(page, name) {
   // Two animation frames: the page renders on demand, so let a pending frame land before the capture.
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
@@ -97,7 +111,7 @@ async function shot(page, name) {
   return PNG.sync.read(buffer);
 }
 
-test('web view shows the twin tiles and a growing estimate trajectory', { skip: !URL_ && 'TWINSLAM_VIEW_URL not set', timeout: (WAIT_S + GAP_S + 60) * 1000 }, async () => {
+test('web view shows the twin tiles and a growing estimate trajectory', { skip: !URL_ && 'TWINSLAM_VIEW_URL not set', timeout: (2 * WAIT_S + GAP_S + 60) * 1000 }, async () => {
   const browser = await chromium.launch({
     executablePath: CHROMIUM,
     headless: true,
@@ -125,7 +139,13 @@ test('web view shows the twin tiles and a growing estimate trajectory', { skip: 
     }
     const first = await shot(page, 'view-1.png');
     const overlays1 = await overlayRects(page);
+    // Shot 2 once the page has received more of the path and drawn it, not after a fixed time alone: on a loaded
+    // machine SwiftShader draws few frames, and a fixed gap once ended after the run (+0 px, "frames": 4).
+    const atFirst = await page.evaluate(progress);
     await page.waitForTimeout(GAP_S * 1000);
+    await page
+      .waitForFunction(grown, atFirst, { timeout: WAIT_S * 1000, polling: 250 })
+      .catch(() => log.push(`no further poses drawn within ${WAIT_S} s of the first shot (at it: ${JSON.stringify(atFirst)})`));
     const second = await shot(page, 'view-2.png');
     // The union of both shots' overlays: the panel may grow (a vehicle appears) between them.
     const overlays = [...overlays1, ...(await overlayRects(page))];
