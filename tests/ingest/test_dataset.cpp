@@ -69,6 +69,25 @@ TEST(Dataset, MissingImageFile) {
                                         " does not exist");
 }
 
+// `twinslam sim --no-images` lists no image: a feature-track replay takes it, an image replay says what it is.
+TEST(Dataset, AFeaturesOnlyDatasetLoadsForAFeatureReplayOnly) {
+  const auto dir = test::broken_copy("featuresonly", [](const fs::path& d) {
+    std::ofstream(d / "mav0/cam0/data.csv") << "#timestamp [ns],filename\n";
+  });
+  EXPECT_EQ(test::load_error(dir), (dir / "mav0/cam0/data.csv").string() +
+                                       ": no images listed (a features-only dataset: replay it with --features)");
+  const auto ds = ingest::load_dataset(dir, ingest::CameraInput::kFeatureTracks);
+  EXPECT_TRUE(ds.images.empty());
+  EXPECT_EQ(ds.imu.size(), 29120u);
+  // Listed images must still exist in a feature replay: a broken dataset stays broken.
+  const auto missing = test::broken_copy("featuresmissing", [](const fs::path& d) {
+    fs::remove(d / "mav0/cam0/data/1403715273362142976.png");
+  });
+  EXPECT_THROW(ingest::load_dataset(missing, ingest::CameraInput::kFeatureTracks), InputError);
+  fs::remove_all(dir);
+  fs::remove_all(missing);
+}
+
 TEST(Dataset, UndecodableImageIsAnInputError) {
   const auto dir = test::broken_copy("badpng", [](const fs::path& d) {
     std::ofstream(d / "mav0/cam0/data/1403715273262142976.png") << "not a png";

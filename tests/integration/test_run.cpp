@@ -1,5 +1,6 @@
 // `twinslam run` on the EuRoC excerpt: all services start as processes, the whole dataset flows in lockstep, and
 // run.json records exactly what flowed.
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -220,5 +221,37 @@ TEST(Run, ServicesStartedOutsideTheRunGiveTheSameLockstepTrajectory) {
   EXPECT_EQ(json["external"], nlohmann::json({"estimator", "registration", "tiles"}));
   EXPECT_FALSE(json["services"].contains("estimator")) << json["services"].dump();  // the run started only ingest
   EXPECT_GT(json["messages"]["twinslam/v3/registration"], 0);
+  fs::remove_all(base);
+}
+
+// A features-only dataset (`twinslam sim --no-images`: seconds instead of minutes of rendering) flies with
+// `--features`, a pose for each of its feature frames; without `--features` the run refuses it in one line, before
+// any service starts.
+TEST(Run, AFeaturesOnlyDatasetFliesWithItsFeatureTracks) {
+  const fs::path base = fs::temp_directory_path() / ("twinslam_run_features_only_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  const auto sim = test::run_process({test::bin("twinslam"), "sim", "--scenario", "tiny", "--out",
+                                      (base / "tiny").string(), "--features", "--no-images", "--quiet"},
+                                     {}, std::chrono::seconds(120));
+  ASSERT_EQ(sim.exit_code, 0) << sim.out << sim.err;
+  const std::string domain = std::to_string(test::test_domain());
+  const auto refused = test::run_process({test::bin("twinslam"), "run", (base / "tiny").string(), "--mode", "vio",
+                                          "--no-progress", "--domain", domain, "--out", (base / "images").string()});
+  EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
+  EXPECT_NE(refused.err.find((base / "tiny/mav0/cam0/data.csv").string() +
+                             ": no images listed (a features-only dataset: replay it with --features)"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(base / "images/run.json"));
+  const auto run = test::run_process({test::bin("twinslam"), "run", (base / "tiny").string(), "--mode", "vio",
+                                      "--features", "--no-progress", "--domain", domain, "--out",
+                                      (base / "run").string()},
+                                     {}, std::chrono::seconds(180));
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find(", 0 images, "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("601 feature frames (replayed)"), std::string::npos) << run.out;
+  std::ifstream in(base / "run/trajectory.tum");
+  const std::string trajectory((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_GT(std::count(trajectory.begin(), trajectory.end(), '\n'), 500);  // tiny: 601 frames in 30 s
   fs::remove_all(base);
 }

@@ -29,7 +29,7 @@ std::vector<GeoTrack> dataset_tracks(const nlohmann::json& j, const twin::EnuFra
   std::vector<GeoTrack> tracks;
   const fs::path dataset = j.value("dataset", "");
   try {
-    const auto data = ingest::load_dataset(dataset);
+    const auto data = ingest::load_dataset(dataset, ingest::CameraInput::kFeatureTracks);  // no image is read
     GeoTrack gnss{"gnss", {}, {}};
     for (const auto& g : data.gnss) {
       gnss.stamps_ns.push_back(g.stamp_ns);

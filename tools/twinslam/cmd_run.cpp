@@ -73,8 +73,12 @@ int run_pipeline(const RunOptions& o) {
   const std::optional<int> domain_given = given_domain(o.domain);
   check_shared_edge(o, uses_twin(o.mode), domain_given.has_value());
   const std::set<std::string> external = external_set(o, uses_twin(o.mode), domain_given.has_value());
-  const auto dataset = ingest::load_dataset(o.dataset);  // bad input ends here, before anything starts
-  if (o.features) ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv");
+  // Bad input ends here, before anything starts.
+  const auto dataset =
+      ingest::load_dataset(o.dataset, o.features ? ingest::CameraInput::kFeatureTracks : ingest::CameraInput::kImages);
+  // The camera frames the estimator will see: the images, or the feature tracks' frames (there may be no image).
+  const std::size_t camera_frames =
+      o.features ? ingest::load_feature_tracks(dataset.root / "mav0/cam0/features.csv").size() : dataset.images.size();
   check_config_dir(o.config_dir);
   // Twin modes: W's origin and the twin store (built once per twin content), and how T_WL is first found.
   std::optional<DatasetGeo> geo;
@@ -193,7 +197,7 @@ int run_pipeline(const RunOptions& o) {
   for (auto& a : config_args(o.config_dir, "ingest")) ingest.push_back(std::move(a));
   supervisor.start(place_service({"ingest", "twinslam-ingest", ingest, env, {}, true}, o, security));
   // One pose per camera frame: the bar counts the estimator's poses against the dataset's frames.
-  Progress progress(o.progress_label, dataset.images.size(), o.progress);
+  Progress progress(o.progress_label, camera_frames, o.progress);
   auto event = process::Supervisor::Event::Timeout;
   while ((event = supervisor.watch(std::chrono::milliseconds(250))) == process::Supervisor::Event::Timeout) {
     progress.update(poses.load(std::memory_order_relaxed));
@@ -292,8 +296,9 @@ int run_pipeline(const RunOptions& o) {
               o.mode.c_str(), o.realtime ? "realtime" : "lockstep", domain);
   std::printf("%-28s %10s\n", "TOPIC", "MESSAGES");
   for (const auto& [name, count] : messages.items()) std::printf("%-28s %10llu\n", name.c_str(), count.get<unsigned long long>());
-  std::printf("dataset: %zu IMU, %zu images, %zu GNSS\n", dataset.imu.size(), dataset.images.size(),
-              dataset.gnss.size());
+  std::printf("dataset: %zu IMU, %zu images, %zu GNSS", dataset.imu.size(), dataset.images.size(), dataset.gnss.size());
+  if (o.features) std::printf(", %zu feature frames (replayed)", camera_frames);
+  std::printf("\n");
   return status == "failed" ? kExitInternal : kExitOk;
 }
 

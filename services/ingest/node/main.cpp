@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
     if (start->count() > 0) config.start_timeout_s = cli.start_timeout_s;
     if (ack->count() > 0) config.ack_timeout_s = cli.ack_timeout_s;
     config.validate(config_file.empty() ? "command line" : config_file);
-    const auto dataset = twinslam::ingest::load_dataset(dataset_dir);
+    const auto dataset = twinslam::ingest::load_dataset(
+        dataset_dir, features ? twinslam::ingest::CameraInput::kFeatureTracks : twinslam::ingest::CameraInput::kImages);
     spdlog::info("dataset {}: {} IMU, {} images, {} GNSS", dataset.root.string(), dataset.imu.size(),
                  dataset.images.size(), dataset.gnss.size());
     opt.realtime = service.realtime;

@@ -36,7 +36,7 @@ std::vector<ImuRecord> load_imu_csv(const fs::path& file) {
 }
 
 namespace {
-std::vector<ImageRecord> load_images(const fs::path& file) {
+std::vector<ImageRecord> load_images(const fs::path& file, CameraInput camera) {
   std::vector<ImageRecord> out;
   std::int64_t previous = INT64_MIN;
   const fs::path image_dir = file.parent_path() / "data";
@@ -53,7 +53,9 @@ std::vector<ImageRecord> load_images(const fs::path& file) {
     previous = r.stamp_ns;
     out.push_back(std::move(r));
   });
-  if (out.empty()) throw InputError(where(file.string(), 0, "no images listed"));
+  if (out.empty() && camera == CameraInput::kImages) {
+    throw InputError(where(file.string(), 0, "no images listed (a features-only dataset: replay it with --features)"));
+  }
   return out;
 }
 
@@ -85,14 +87,14 @@ std::vector<GnssRecord> load_gnss(const fs::path& file) {
 }
 }  // namespace
 
-Dataset load_dataset(const fs::path& dir) {
+Dataset load_dataset(const fs::path& dir, CameraInput camera) {
   if (!fs::is_directory(dir)) throw InputError(where(dir.string(), 0, "dataset folder does not exist"));
   Dataset ds;
   ds.root = fs::absolute(dir);
   const fs::path mav0 = ds.root / "mav0";
   if (!fs::is_directory(mav0)) throw InputError(where(dir.string(), 0, "not a EuRoC dataset (no mav0/ folder)"));
   ds.imu = load_imu_csv(mav0 / "imu0" / "data.csv");
-  ds.images = load_images(mav0 / "cam0" / "data.csv");
+  ds.images = load_images(mav0 / "cam0" / "data.csv", camera);
   if (const fs::path gnss = mav0 / "gnss0" / "data.csv"; fs::exists(gnss)) ds.gnss = load_gnss(gnss);
   return ds;
 }

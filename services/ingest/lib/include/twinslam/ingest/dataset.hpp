@@ -35,9 +35,13 @@ struct Dataset {
   std::vector<GnssRecord> gnss;      // empty when the dataset has no mav0/gnss0
 };
 
+// What the camera stream of a replay is made of. A feature-track replay (`--features`) publishes
+// mav0/cam0/features.csv and reads no image, so its cam0/data.csv may list none (`twinslam sim --no-images`).
+enum class CameraInput { kImages, kFeatureTracks };
+
 // Throws InputError naming the file (and line) on: missing folder or file, malformed row, non-finite value,
-// timestamps not strictly increasing, a listed image file that does not exist.
-Dataset load_dataset(const std::filesystem::path& dir);
+// timestamps not strictly increasing, a listed image file that does not exist, no image listed (kImages only).
+Dataset load_dataset(const std::filesystem::path& dir, CameraInput camera = CameraInput::kImages);
 
 // Just the IMU file (mav0/imu0/data.csv), with the same checks: for features-only datasets (`sim --no-images`).
 std::vector<ImuRecord> load_imu_csv(const std::filesystem::path& file);
