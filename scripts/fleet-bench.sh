@@ -5,18 +5,27 @@
 # are spread over the city and share its twin. Each vehicle also flies alone on the same kind of edge: its single-
 # vehicle run, the reference of its ATE in the fleets.
 #
-#   bash scripts/fleet-bench.sh OUT [SIZES...]
+#   bash scripts/fleet-bench.sh OUT [SIZES...] [--max]
+#
+# --max: every run (alone and in fleets) in lockstep instead of realtime: each estimator takes every frame whatever
+# the CPU, and waits for the shared edge's answer to each LocalMap. On a machine with fewer cores than the fleet's
+# processes need in realtime this stands in for each vehicle flying its own computer: the vehicles' ATE then shows what
+# sharing the edge costs them, and the latency what the edge's queue adds (not realtime latency).
 #
 # OUT/data/uavK the datasets (kept and reused), OUT/single/uavK, OUT/fleet-N, OUT/fleet-N-split the fleet.sh folders.
 # Prints a table: per fleet, registration latency median / p99, the edge's CPU and peak memory, the worst ratio of a
 # vehicle's ATE in W to its single-vehicle run and how many vehicles stay within 1.2x; for the split fleet the
-# vehicles each instance served. Takes about 20 minutes with the default sizes.
+# vehicles each instance served. Takes about 20 minutes with the default sizes (--max: 15).
 set -euo pipefail
 die() { echo "fleet-bench.sh: $*" >&2; exit 2; }
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 [[ $# -ge 1 ]] || die "usage: fleet-bench.sh OUT [SIZES...]"
 out=$(realpath -m "$1"); shift
-sizes=("${@:-1 5 10}"); sizes=(${sizes[*]})
+replay=(); args=()
+for a in "$@"; do
+  if [[ $a == --max ]]; then replay=(--max); else args+=("$a"); fi
+done
+sizes=("${args[@]:-1 5 10}"); sizes=(${sizes[*]})
 largest=0
 for s in "${sizes[@]}"; do
   [[ $s =~ ^[0-9]+$ && $s -ge 1 && $s -le 10 ]] || die "a fleet size is 1..10, not '$s'"
@@ -41,22 +50,22 @@ name: fleet-uav$k
 base: city-loops
 trajectory: {type: waypoints, duration_s: 80, speed_mps: 3, waypoints: [[$((cx - 30)), $((cy - 30)), 16], [$((cx + 30)), $((cy - 30)), 19], [$((cx + 30)), $((cy + 30)), 16], [$((cx - 30)), $((cy + 30)), 19], [$((cx - 30)), $((cy - 25)), 16]]}
 EOF
-  "$bin/twinslam" sim --scenario "$out/data/uav$k.yaml" --out "$d" --features --quiet
+  "$bin/twinslam" sim --scenario "$out/data/uav$k.yaml" --out "$d" --features --no-images --quiet  # ideal tracks: no images
 done
 
 for ((k = 0; k < largest; k++)); do
   echo "fleet-bench.sh: uav$k alone"
-  bash "$root/scripts/fleet.sh" "$out/single/uav$k" "${datasets[$k]}" -- --features > "$out/single-uav$k.txt" ||
+  bash "$root/scripts/fleet.sh" "$out/single/uav$k" "${datasets[$k]}" "${replay[@]}" -- --features > "$out/single-uav$k.txt" ||
     echo "fleet-bench.sh: uav$k failed alone ($out/single-uav$k.txt)"
 done
 for s in "${sizes[@]}"; do
   echo "fleet-bench.sh: a fleet of $s"
-  bash "$root/scripts/fleet.sh" "$out/fleet-$s" "${datasets[@]:0:$s}" -- --features > "$out/fleet-$s.txt" ||
+  bash "$root/scripts/fleet.sh" "$out/fleet-$s" "${datasets[@]:0:$s}" "${replay[@]}" -- --features > "$out/fleet-$s.txt" ||
     echo "fleet-bench.sh: a vehicle's run failed in the fleet of $s ($out/fleet-$s.txt)"
 done
 if (( largest >= 2 )); then
   echo "fleet-bench.sh: a fleet of $largest, two registration instances"
-  bash "$root/scripts/fleet.sh" "$out/fleet-$largest-split" "${datasets[@]}" --split -- --features \
+  bash "$root/scripts/fleet.sh" "$out/fleet-$largest-split" "${datasets[@]}" --split "${replay[@]}" -- --features \
     > "$out/fleet-$largest-split.txt" || echo "fleet-bench.sh: a vehicle's run failed in the split fleet"
 fi
 
