@@ -19,7 +19,7 @@
 set -euo pipefail
 die() { echo "fleet-bench.sh: $*" >&2; exit 2; }
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-[[ $# -ge 1 ]] || die "usage: fleet-bench.sh OUT [SIZES...]"
+[[ $# -ge 1 ]] || die "usage: fleet-bench.sh OUT [SIZES...] [--max]"
 out=$(realpath -m "$1"); shift
 replay=(); args=()
 for a in "$@"; do
