@@ -2,6 +2,8 @@
 // information is a proper one, and every rejection reason can happen.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <Eigen/Eigenvalues>
 
 #include "synthetic_twin.hpp"
@@ -205,6 +207,25 @@ TEST(Registration, CorridorIsAcceptedWithNoInformationAlongIt) {
   EXPECT_LT(std::abs(err.z()), 0.02);
   const Eigen::Matrix3d dR = (r.correction_W * error).linear();
   EXPECT_LT(geometry::so3_log(dR).norm() * 180.0 / M_PI, 0.05);
+}
+
+// An estimate 6 m off in height (a provisional GNSS alignment: urban GNSS is worst vertically): the ground and the
+// roofs are beyond the fixed 3 m first gate, the facades say nothing about height, so ICP cannot find it. When the
+// estimator's covariance says it is that unsure (3 m sigmas), the first gate covers 3 of them and the height is found.
+TEST(Registration, TheFirstGateCoversThePositionUncertaintyTheEstimatorSends) {
+  const Scene& s = scene();
+  const Eigen::Isometry3d error = test::offset_about(kBody, {0, 0, 1}, 0.0, {0.0, 0.0, 6.0});
+  const SourceInput in = test::make_source(s.landmarks(4000, 0.0), error, kBody);
+  const auto height_error = [&](const RegistrationResult& r) { return (r.correction_W * (error * kBody) - kBody).norm(); };
+  Matrix6d unsure = Matrix6d::Zero();
+  unsure.diagonal() << Eigen::Vector3d::Constant(std::pow(0.5 * M_PI / 180.0, 2)), Eigen::Vector3d::Constant(9.0);
+  const RegistrationResult found = register_cloud(fine(), s.index, in, unsure);
+  ASSERT_TRUE(found.accepted()) << found.reason;
+  EXPECT_LT(height_error(found), 0.05);
+  RegistrationConfig fixed_gate = fine();
+  fixed_gate.initial_threshold_sigmas = 0.0;
+  const RegistrationResult stuck = register_cloud(fixed_gate, s.index, in, unsure);
+  EXPECT_FALSE(stuck.accepted() && height_error(stuck) < 0.5) << height_error(stuck);
 }
 
 TEST(Registration, BadInputIsAnInputErrorNotACrash) {

@@ -1,6 +1,7 @@
 // register_cloud: the stages and the acceptance tests (see registration.hpp).
 #include "twinslam/registration/registration.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -92,6 +93,16 @@ bool reject_geometry(const RegistrationConfig& c, const std::optional<Matrix6d>&
   return true;
 }
 
+// The ICP's first correspondence gate covers the estimator's own position uncertainty (initial_threshold_sigmas).
+RegistrationConfig icp_config(const RegistrationConfig& config, const std::optional<Matrix6d>& prior_covariance) {
+  RegistrationConfig c = config;
+  if (!prior_covariance || !(config.initial_threshold_sigmas > 0.0)) return c;
+  const double sigma_m = std::sqrt(std::max(prior_covariance->bottomRightCorner<3, 3>().diagonal().maxCoeff(), 0.0));
+  c.initial_threshold_m = std::clamp(config.initial_threshold_sigmas * sigma_m, config.initial_threshold_m,
+                                     config.max_initial_threshold_m);
+  return c;
+}
+
 }  // namespace
 
 const char* status_name(RegistrationStatus status) {
@@ -128,8 +139,8 @@ RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTi
   const auto t1 = Clock::now();
   std::optional<double> heading_sigma_deg;
   if (prior_covariance) heading_sigma_deg = std::sqrt((*prior_covariance)(2, 2)) * 180.0 / M_PI;  // about W's z
-  const YawSearchResult search = run_icp_with_yaw_search(config, index, cloud.p_W, cloud.cov_W, cloud.p_WB, heading_sigma_deg,
-                                                          scale_prior);
+  const YawSearchResult search = run_icp_with_yaw_search(icp_config(config, prior_covariance), index, cloud.p_W,
+                                                          cloud.cov_W, cloud.p_WB, heading_sigma_deg, scale_prior);
   const IcpResult& icp = search.icp;
   r.time.icp_ms = ms_since(t1);
   r.yaw_starts = search.starts;

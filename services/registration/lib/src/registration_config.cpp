@@ -47,6 +47,8 @@ const std::vector<Key>& keys() {
       {"threads", &C::threads},
       {"max_iterations", &C::max_iterations},
       {"initial_threshold_m", &C::initial_threshold_m},
+      {"initial_threshold_sigmas", &C::initial_threshold_sigmas},
+      {"max_initial_threshold_m", &C::max_initial_threshold_m},
       {"min_threshold_m", &C::min_threshold_m},
       {"threshold_sigmas", &C::threshold_sigmas},
       {"convergence_translation_m", &C::convergence_translation_m},
@@ -155,6 +157,9 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(threads >= 1 && threads <= 256, s, "threads", "must be in [1, 256]", threads);
   check(max_iterations >= 1, s, "max_iterations", "must be >= 1", max_iterations);
   check(pos(initial_threshold_m), s, "initial_threshold_m", "must be > 0 m", initial_threshold_m);
+  check(nonneg(initial_threshold_sigmas), s, "initial_threshold_sigmas", "must be >= 0", initial_threshold_sigmas);
+  check(max_initial_threshold_m >= initial_threshold_m, s, "max_initial_threshold_m", "must be >= initial_threshold_m",
+        max_initial_threshold_m);
   check(pos(min_threshold_m) && min_threshold_m <= initial_threshold_m, s, "min_threshold_m",
         "must lie in (0, initial_threshold_m] m", min_threshold_m);
   check(pos(threshold_sigmas), s, "threshold_sigmas", "must be > 0", threshold_sigmas);
