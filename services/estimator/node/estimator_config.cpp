@@ -26,6 +26,8 @@ void bind_fusion_fields(yaml::Fields& fields, GlobalFusionConfig& f) {
       .flag("realign_on_readmitted_registration", f.realign_on_readmitted_registration)
       .number("realign_min_correction_m", f.realign_min_correction_m, "m")
       .number("realign_min_correction_deg", f.realign_min_correction_deg, "deg")
+      .integer("declare_agreeing_registrations", f.declare_agreeing_registrations)
+      .number("declare_max_correction_m", f.declare_max_correction_m, "m")
       .number("initial_pose_position_sigma_m", f.initial_pose_position_sigma_m, "m")
       .number("initial_pose_yaw_sigma_deg", f.initial_pose_yaw_sigma_deg, "deg")
       .number("gnss_alignment_sigma_scale", f.gnss_alignment_sigma_scale)

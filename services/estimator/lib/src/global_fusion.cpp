@@ -39,12 +39,16 @@ void GlobalFusionConfig::validate() const {
       {"initial_pose_yaw_sigma_deg", initial_pose_yaw_sigma_deg},
       {"gnss_alignment_sigma_scale", gnss_alignment_sigma_scale},
       {"realign_min_correction_m", realign_min_correction_m},
-      {"realign_min_correction_deg", realign_min_correction_deg}};
+      {"realign_min_correction_deg", realign_min_correction_deg},
+      {"declare_max_correction_m", declare_max_correction_m}};
   if (!(provisional_yaw_sigma_deg >= 0.0) || !std::isfinite(provisional_yaw_sigma_deg)) {
     throw InputError("global fusion: provisional_yaw_sigma_deg must be >= 0");
   }
   for (const auto& [name, v] : positive) {
     if (!(v > 0.0) || !std::isfinite(v)) throw InputError(std::string("global fusion: ") + name + " must be > 0");
+  }
+  if (declare_agreeing_registrations < 0) {
+    throw InputError("global fusion: declare_agreeing_registrations must be >= 0");
   }
   if (!(gnss_correlation_s >= 0.0) || !std::isfinite(gnss_correlation_s)) {
     throw InputError("global fusion: gnss_correlation_s must be >= 0");
@@ -133,7 +137,7 @@ void GlobalFusion::try_align(std::int64_t stamp_ns) {
       if (!a->converged) return;
       if (realignment_helps(prior_sigmas(config_, *a))) {
         set_from_fit(*a, stamp_ns, true);
-      } else {
+      } else if (registrations_agree()) {
         declared_ = true;
         aligner_.clear();
       }
@@ -163,6 +167,7 @@ void GlobalFusion::set_from_fit(const WorldAlignment4Dof& fit, std::int64_t stam
   aligned_ = true;
   declared_ = declared;
   last_accepted_ns_ = stamp_ns;
+  recent_corrections_m_.clear();  // they were measured against the T_WL replaced here
   ++counts_.alignments;
   if (declared) {
     aligner_.clear();  // a later re-alignment uses fixes after this one only
@@ -178,9 +183,16 @@ void GlobalFusion::check_declaration() {
   const auto cov = estimator_.world_alignment_covariance();  // [p_WL, yaw_WL]
   if (!cov) return;
   const double yaw_sigma_deg = std::sqrt(std::max((*cov)(3, 3), 0.0)) / kDegToRad;
-  if (yaw_sigma_deg > config_.aligner.converged_yaw_sigma_deg) return;
+  if (yaw_sigma_deg > config_.aligner.converged_yaw_sigma_deg || !registrations_agree()) return;
   declared_ = true;
   aligner_.clear();
+}
+
+bool GlobalFusion::registrations_agree() const {
+  const auto n = static_cast<std::size_t>(config_.declare_agreeing_registrations);
+  if (recent_corrections_m_.size() < n) return false;
+  return std::all_of(recent_corrections_m_.end() - static_cast<std::ptrdiff_t>(n), recent_corrections_m_.end(),
+                     [&](double m) { return m <= config_.declare_max_correction_m; });
 }
 
 std::optional<Eigen::Matrix<double, 6, 6>> GlobalFusion::published_covariance(std::int64_t keyframe_stamp_ns) const {
@@ -225,6 +237,11 @@ std::string GlobalFusion::on_registration(std::int64_t keyframe_stamp_ns, bool a
     return "";
   }
   const auto& [T_LB, T_WL, covariance] = it->second;
+  // Refused by the gate below or not, it says whether the twin agrees with the estimate (registrations_agree).
+  recent_corrections_m_.push_back(correction_size(correction_W, (T_WL * T_LB).translation()).position_m);
+  if (recent_corrections_m_.size() > static_cast<std::size_t>(config_.declare_agreeing_registrations)) {
+    recent_corrections_m_.pop_front();
+  }
   if (std::string refusal = registration_refusal(
           config_.registration_gate, {correction_W, T_WL * T_LB, covariance, readmitted, world_declared()});
       !refusal.empty()) {
@@ -258,6 +275,7 @@ void GlobalFusion::reopen_alignment(const Eigen::Isometry3d& correction_W, const
   sigmas.yaw_rad = std::max(kReopenMinSigma_deg * kDegToRad, size.yaw_rad);
   estimator_.set_world_alignment(T_WL_new, sigmas);
   provider_->drop_all();
+  recent_corrections_m_.clear();
   ++counts_.registration_realignments;
 }
 
