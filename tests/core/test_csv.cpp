@@ -7,13 +7,14 @@
 #include "twinslam/core/csv.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/core/text.hpp"
+#include "scratch_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace twinslam;
 
 namespace {
 fs::path write_file(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / ("twinslam_csv_" + std::to_string(::getpid()));
+  const fs::path dir = twinslam::test::scratch_dir() / "csv";
   fs::create_directories(dir);
   std::ofstream(dir / name) << text;
   return dir / name;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "subprocess.hpp"
+#include "scratch_dir.hpp"
 #include "twinslam/core/error.hpp"
 #include "twinslam/gnss/smartloc.hpp"
 
@@ -19,7 +20,7 @@ const std::string kInput = kDir + "Berlin_Potsdamer_Platz_Input_first90s.txt";
 const std::string kTruth = kDir + "Berlin_Potsdamer_Platz_GT_first90s.txt";
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
+  const fs::path p = twinslam::test::scratch_dir() / name;
   std::ofstream(p) << text;
   return p.string();
 }
@@ -70,7 +71,7 @@ TEST(GnssSmartLoc, BrokenFilesNameTheFileLineAndProblem) {
 }
 
 TEST(GnssSmartLoc, SolveCommandPrintsTheContractJsonAndWritesFixes) {
-  const std::string out = (fs::temp_directory_path() / (std::to_string(::getpid()) + "_fixes.csv")).string();
+  const std::string out = (twinslam::test::scratch_dir() / "fixes.csv").string();
   const auto r = test::run_process(
       {std::string(TWINSLAM_BIN_DIR) + "/twinslam", "gnss", "solve", kInput, "--gt", kTruth, "--out", out, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;

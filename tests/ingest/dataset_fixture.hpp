@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "twinslam/core/error.hpp"
+#include "scratch_dir.hpp"
 #include "twinslam/ingest/dataset.hpp"
 
 namespace twinslam::test {
@@ -28,7 +29,7 @@ inline void replace_line(const fs::path& file, std::size_t line_no, const std::s
 }
 
 inline fs::path broken_copy(const std::string& tag, const std::function<void(const fs::path&)>& damage) {
-  const fs::path dir = fs::temp_directory_path() / ("twinslam_ds_" + tag + "_" + std::to_string(::getpid()));
+  const fs::path dir = scratch_dir() / ("ds_" + tag);
   fs::remove_all(dir);
   const fs::path src = euroc_dir();
   fs::create_directories(dir / "mav0/cam0/data");

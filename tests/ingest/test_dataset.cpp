@@ -97,7 +97,7 @@ TEST(Dataset, UndecodableImageIsAnInputError) {
 }
 
 TEST(FeatureTracks, GroupsRowsByFrameAndCountsTrackLengths) {
-  const fs::path f = fs::temp_directory_path() / ("twinslam_features_" + std::to_string(::getpid()) + ".csv");
+  const fs::path f = test::scratch_dir() / "features.csv";
   std::ofstream(f) << "#t_ns,landmark_id,u,v,u_noisy,v_noisy\n"
                       "100,1,10,20,10.5,20.5\n100,2,30,40,30,40\n"
                       "200,1,11,21,11.5,21.5\n"
@@ -113,7 +113,7 @@ TEST(FeatureTracks, GroupsRowsByFrameAndCountsTrackLengths) {
 }
 
 TEST(FeatureTracks, RejectsFramesOutOfOrderAndDuplicates) {
-  const fs::path f = fs::temp_directory_path() / ("twinslam_features_bad_" + std::to_string(::getpid()) + ".csv");
+  const fs::path f = test::scratch_dir() / "features_bad.csv";
   std::ofstream(f) << "200,1,1,1,1,1\n100,1,1,1,1,1\n";
   try {
     ingest::load_feature_tracks(f);

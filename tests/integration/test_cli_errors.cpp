@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "dataset_fixture.hpp"
+#include "scratch_dir.hpp"
 #include "subprocess.hpp"
 
 namespace fs = std::filesystem;
@@ -67,7 +68,7 @@ TEST(CliErrors, MissingQosFile) {
 }
 
 TEST(CliErrors, MalformedLaunchFile) {
-  const fs::path f = fs::temp_directory_path() / ("twinslam_bad_launch_" + std::to_string(::getpid()) + ".yaml");
+  const fs::path f = test::scratch_dir() / "bad_launch.yaml";
   std::ofstream(f) << "services:\n  - name: a\n    exec: twinslam-tracking\n    argz: [1]\n";
   expect_bad_input(test::run_process({test::bin("twinslam"), "launch", f.string()}),
                    {f.string(), "unknown key 'services[0].argz'"});

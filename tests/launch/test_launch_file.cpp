@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "launch_file.hpp"
+#include "scratch_dir.hpp"
 #include "twinslam/core/error.hpp"
 
 namespace fs = std::filesystem;
@@ -25,7 +26,7 @@ TEST(LaunchFile, ShippedDeploymentsParseAndTheirExecutablesExist) {
 }
 
 TEST(LaunchFile, ExpandsEnvironmentDefaultsAndOverrides) {
-  const fs::path f = fs::temp_directory_path() / ("twinslam_launch_" + std::to_string(::getpid()) + ".yaml");
+  const fs::path f = test::scratch_dir() / "launch.yaml";
   std::ofstream(f) << "name: t\nenv: {A: \"${TWINSLAM_T_UNSET:-one}\"}\nservices:\n"
                       "  - {name: s, exec: x, args: [\"${TWINSLAM_T_SET}\"], env: {B: two}, required: true, cwd: sub}\n";
   ::setenv("TWINSLAM_T_SET", "val", 1);
@@ -36,11 +37,11 @@ TEST(LaunchFile, ExpandsEnvironmentDefaultsAndOverrides) {
   EXPECT_EQ(s.env.at("A"), "one");
   EXPECT_EQ(s.env.at("B"), "two");
   EXPECT_TRUE(s.required);
-  EXPECT_EQ(s.cwd, fs::temp_directory_path() / "sub");
+  EXPECT_EQ(s.cwd, test::scratch_dir() / "sub");
 }
 
 TEST(LaunchFile, RejectsDuplicateNamesAndEmptyLists) {
-  const fs::path f = fs::temp_directory_path() / ("twinslam_launch_dup_" + std::to_string(::getpid()) + ".yaml");
+  const fs::path f = test::scratch_dir() / "launch_dup.yaml";
   std::ofstream(f) << "services:\n  - {name: a, exec: x}\n  - {name: a, exec: y}\n";
   EXPECT_THROW(cli::load_launch_file(f), InputError);
   std::ofstream(f) << "services: []\n";
@@ -54,7 +55,7 @@ TEST(LaunchFile, RestartPolicyIsReadAndTheEdgeServicesHaveIt) {
   for (const auto& s : edge.services) EXPECT_TRUE(s.restart_on_failure) << s.name;
   const auto drone = cli::load_launch_file(fs::path(TWINSLAM_SOURCE_DIR) / "deploy/drone.yaml");
   for (const auto& s : drone.services) EXPECT_FALSE(s.restart_on_failure) << s.name;
-  const fs::path f = fs::temp_directory_path() / ("twinslam_launch_restart_" + std::to_string(::getpid()) + ".yaml");
+  const fs::path f = test::scratch_dir() / "launch_restart.yaml";
   std::ofstream(f) << "name: t\nservices:\n  - {name: s, exec: x, restart: on-failure, max_restarts: 2}\n";
   const auto launch = cli::load_launch_file(f);
   EXPECT_TRUE(launch.services[0].restart_on_failure);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "scratch_dir.hpp"
 #include "subprocess.hpp"
 #include "twinslam/ingest/dataset.hpp"
 #include "twinslam/ingest/features.hpp"
@@ -62,7 +63,7 @@ TEST(SimCli, TinyIsDeterministicAndReplayable) {
 }
 
 TEST(SimCli, BadScenarioKeyIsExitTwoNamingTheKey) {
-  const fs::path f = fs::temp_directory_path() / ("twinslam_bad_scenario_" + std::to_string(::getpid()) + ".yaml");
+  const fs::path f = test::scratch_dir() / "bad_scenario.yaml";
   std::ofstream(f) << "seed: 3\nimu: {rate_hz: -5}\n";
   const auto r = test::run_process({test::bin("twinslam"), "sim", "--scenario", f.string(), "--out", "/tmp/never"});
   EXPECT_EQ(r.exit_code, 2);
