@@ -44,7 +44,7 @@ struct RegistrationResult {
   double fitness = 0.0;  // inliers / source points
   double scale = 1.0;    // ICP's scale of the cloud about the pivot (1 unless estimate_scale), not in correction_W
   int iterations = 0;
-  int yaw_starts = 1;  // ICP runs of the heading search (yaw_search.hpp); 1 when the estimator is sure of its heading
+  int yaw_starts = 1;  // ICP runs: the heading search's starts (yaw_search.hpp), twice with a wider first gate; 1 when sure
   bool heading_ambiguous = false;  // refused because another heading fit almost as well (correction: the best one's)
   StageTimes time;
 

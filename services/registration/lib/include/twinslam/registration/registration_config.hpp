@@ -50,11 +50,12 @@ struct RegistrationConfig {
   // --- ICP (icp.hpp), eq. (2) ---
   int max_iterations = 30;                  // Gauss-Newton iterations at most
   double initial_threshold_m = 3.0;         // correspondence gate at the first iteration [m] (>= expected drift)
-  // ... or, while the estimator is unsure of its position (a provisional GNSS alignment), this many of its position
-  // sigmas (the largest, from the LocalMap's covariance), up to max_initial_threshold_m: surfaces further off than the
-  // gate give no correspondence, so ICP cannot pull the keyframe to them. Measured on city-loops through the tracking
-  // service: an alignment 7 m off in height (ray-traced GNSS) came in to 3.9 m with the 3 m gate (the ground beyond
-  // it), and stayed there for 45 s; vio-twin 1.653 m, with a 10 m gate 0.468 m. 0: the fixed gate only.
+  // While the estimator is unsure of its position (a provisional GNSS alignment), ICP also runs with a first gate of
+  // this many of its position sigmas (the largest, from the LocalMap's covariance), up to max_initial_threshold_m,
+  // and the better-supported result wins: surfaces further off than the gate give no correspondence, so ICP cannot
+  // pull the keyframe to them. Measured on city-loops through the tracking service: an alignment 7 m off in height
+  // (ray-traced GNSS) came in to 3.9 m with the 3 m gate (the ground beyond it), and stayed there for 45 s; vio-twin
+  // 1.653 m, with a 10 m gate 0.468 m. 0: the fixed gate only.
   double initial_threshold_sigmas = 3.0;    // [1]
   double max_initial_threshold_m = 10.0;    // [m]
   double min_threshold_m = 0.25;            // the adaptive gate never shrinks below this [m] (~ twin point spacing / 2)
