@@ -93,14 +93,13 @@ bool reject_geometry(const RegistrationConfig& c, const std::optional<Matrix6d>&
   return true;
 }
 
-// The ICP's first correspondence gate covers the estimator's own position uncertainty (initial_threshold_sigmas).
-RegistrationConfig icp_config(const RegistrationConfig& config, const std::optional<Matrix6d>& prior_covariance) {
-  RegistrationConfig c = config;
-  if (!prior_covariance || !(config.initial_threshold_sigmas > 0.0)) return c;
+// The first correspondence gate that covers the estimator's own position uncertainty: initial_threshold_sigmas of
+// its largest position sigma, within [initial_threshold_m, max_initial_threshold_m].
+double covering_first_gate_m(const RegistrationConfig& config, const std::optional<Matrix6d>& prior_covariance) {
+  if (!prior_covariance || !(config.initial_threshold_sigmas > 0.0)) return config.initial_threshold_m;
   const double sigma_m = std::sqrt(std::max(prior_covariance->bottomRightCorner<3, 3>().diagonal().maxCoeff(), 0.0));
-  c.initial_threshold_m = std::clamp(config.initial_threshold_sigmas * sigma_m, config.initial_threshold_m,
-                                     config.max_initial_threshold_m);
-  return c;
+  return std::clamp(config.initial_threshold_sigmas * sigma_m, config.initial_threshold_m,
+                    config.max_initial_threshold_m);
 }
 
 }  // namespace
@@ -142,12 +141,13 @@ RegistrationResult register_cloud(const RegistrationConfig& config, const TwinTi
   YawSearchResult search =
       run_icp_with_yaw_search(config, index, cloud.p_W, cloud.cov_W, cloud.p_WB, heading_sigma_deg, scale_prior);
   int starts = search.starts;
-  // While the estimator is unsure of its position ICP also runs from the wider first gate (icp_config); the result
-  // more of the twin supports wins, the fixed gate's on a tie. The wide gate alone found the height where the fixed
-  // one could not (city-loops, tracked images), but in Delft's narrow streets its extra correspondences biased some
+  // While the estimator is unsure of its position ICP also runs from the wider first gate; the result more of the
+  // twin supports wins, the fixed gate's on a tie. The wide gate alone found the height where the fixed one could
+  // not (city-loops, tracked images), but in Delft's narrow streets its extra correspondences biased some
   // registrations 0.5-0.9 m (8 of 258 accepted > 0.5 m off, none with the fixed gate).
-  if (const RegistrationConfig wide = icp_config(config, prior_covariance);
-      wide.initial_threshold_m > config.initial_threshold_m) {
+  if (const double gate_m = covering_first_gate_m(config, prior_covariance); gate_m > config.initial_threshold_m) {
+    RegistrationConfig wide = config;
+    wide.initial_threshold_m = gate_m;
     YawSearchResult widened =
         run_icp_with_yaw_search(wide, index, cloud.p_W, cloud.cov_W, cloud.p_WB, heading_sigma_deg, scale_prior);
     starts += widened.starts;

@@ -56,8 +56,8 @@ struct GlobalFusionConfig {
   // under registrations while the estimate is still metres from where they put it. The alignment is declared from
   // registrations (check_declaration) only when the last declare_agreeing_registrations ones registration accepted
   // (fused, or refused by the estimator's own gate) each moved their keyframe by at most declare_max_correction_m:
-  // the estimate already sits where the twin says. Measured on city-loops through the tracking service: declared on
-  // the heading alone at 44.1 s about 4-5 m off.
+  // the estimate already sits where the twin says. Measured on city-survey (ideal tracks): declared on the heading
+  // alone at 19 s while the next corrections were 7.8, 3.5 and 1.5 m; with 3 agreeing, at 80 s.
   int declare_agreeing_registrations = 3;  // [1]; 0: the heading sigma alone declares
   double declare_max_correction_m = 1.0;   // [m]
   double initial_pose_position_sigma_m = 5.0;  // prior of a user-given initial pose [m]
