@@ -75,8 +75,11 @@ void expect_message_indexes_valid(const File& f) {
                                          : f.message_indexes[i - 1].offset + f.message_indexes[i - 1].length;
     EXPECT_EQ(mi.offset, expected) << "Message Index records follow their chunk without a gap";
     EXPECT_TRUE(channels_per_chunk[mi.chunk].insert(mi.channel).second) << "one Message Index per channel";
-    for (const auto& [log_time, offset] : mi.entries) {
-      const auto it = std::find_if(c.inner.begin(), c.inner.end(), [&](const Record& r) { return r.offset == offset; });
+    for (const auto& entry : mi.entries) {
+      const auto& [log_time, offset] = entry;
+      // entry.second, not the binding: clang 14 (the sanitized tree's compiler) cannot capture structured bindings.
+      const auto it =
+          std::find_if(c.inner.begin(), c.inner.end(), [&](const Record& r) { return r.offset == entry.second; });
       ASSERT_NE(it, c.inner.end()) << "entry offset " << offset << " is no record of the chunk";
       ASSERT_EQ(it->op, 0x05);
       const Message m = parse_message(*it);
