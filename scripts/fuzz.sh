@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # Fuzzing (issue 15): bash scripts/fuzz.sh TARGET[,TARGET...]|all SECONDS [LIBFUZZER ARGS...]
-# Builds the libFuzzer targets with clang (ASan + UBSan + coverage) into build-fuzz/ (TWINSLAM_FUZZ_DIR) and runs
+# Builds the libFuzzer targets with clang (ASan + UBSan + coverage) in the sanitized tree build-sanitize/
+# (TWINSLAM_SANITIZE_DIR; the one scripts/test.sh --sanitize builds, options in scripts/sanitize-options.sh) and runs
 # TARGET (a name of tests/fuzz/targets/, or every one of them) for SECONDS each. The corpus grows in
-# build-fuzz/corpus/TARGET, seeded from the committed tests/fuzz/corpus/TARGET (and the 3D Tiles samples of
+# build-sanitize/corpus/TARGET, seeded from the committed tests/fuzz/corpus/TARGET (and the 3D Tiles samples of
 # ../shared/data for the 3D Tiles targets). A crash, leak, sanitizer report, uncaught exception other than the
 # contract's InputError, or an input slower than 10 s ends the run with exit 1 and the input in
-# build-fuzz/crashes/TARGET/: fix the bug, then commit the input to tests/fuzz/corpus/TARGET/ as a regression test.
+# build-sanitize/crashes/TARGET/: fix the bug, then commit the input to tests/fuzz/corpus/TARGET/ as a regression
+# test.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=${TWINSLAM_FUZZ_DIR:-$root/build-fuzz}
+source "$root/scripts/sanitize-options.sh"
+build=$sanitize_build_dir
 if (( $# < 2 )) || ! [[ "$2" =~ ^[0-9]+$ ]]; then
   echo "usage: scripts/fuzz.sh TARGET[,TARGET...]|all SECONDS [LIBFUZZER ARGS...]" >&2
   exit 2
@@ -26,8 +29,8 @@ fi
 
 # Packages (clang and libclang-rt-dev are in scripts/packages.txt) without building the Release tree.
 TWINSLAM_SETUP_PACKAGES_ONLY=1 bash "$root/scripts/setup.sh"
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DTWINSLAM_FUZZ=ON -DTWINSLAM_BUILD_BENCHMARKS=OFF >/dev/null
+sanitize_prepare_build_dir
+cmake -S "$root" -B "$build" -G Ninja "${sanitize_cmake_args[@]}" >/dev/null
 cmake --build "$build" -j2 --target $(printf 'fuzz_%s ' $targets)
 
 export ASAN_OPTIONS="detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The whole test suite: set-up (packages, configure, build) then ctest. Called by .ci/run.
 #   bash scripts/test.sh [CTEST ARGS...]              Release build in build/ (TWINSLAM_BUILD_DIR), every test
-#   bash scripts/test.sh --sanitize [CTEST ARGS...]   ASan + UBSan build in build-sanitize/ (TWINSLAM_SANITIZE_DIR),
-#                                                     the unit tests (label `unit`) but the scenario-length ones
-#                                                     of tests/sanitizers/slow_tests.txt; any sanitizer report fails
+#   bash scripts/test.sh --sanitize [CTEST ARGS...]   clang ASan + UBSan build in build-sanitize/ (TWINSLAM_SANITIZE_DIR,
+#                                                     shared with scripts/fuzz.sh), the unit tests (label `unit`) but
+#                                                     the scenario-length ones of tests/sanitizers/slow_tests.txt; any
+#                                                     sanitizer report fails
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # Two gtest cases with one name in different executables become one CTest test (the other never runs, and labels
@@ -18,16 +19,12 @@ refuse_duplicate_names() {
 }
 if [[ "${1:-}" == "--sanitize" ]]; then
   shift
-  build=${TWINSLAM_SANITIZE_DIR:-$root/build-sanitize}
-  # -O1: sanitized code at -O3 builds slowly and reports no more; NDEBUG as in Release (the suite's own checks are
-  # gtest assertions). No benchmarks: they measure nothing under a sanitizer; no tests/integration: only `unit` runs.
-  # UBSan without null and alignment: the two emit one check on every pointer and reference use, which doubles the
-  # compile time of Eigen-heavy code (test_world_alignment.cpp: 44 s with them, 21 s without, 15 s unsanitized at
-  # -O1) and so most of CI's sanitized half; a null or misaligned access still ends the test as ASan's SEGV report.
-  TWINSLAM_BUILD_DIR=$build bash "$root/scripts/setup.sh" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DTWINSLAM_SANITIZE=address,undefined \
-    -DTWINSLAM_SANITIZE_EXCLUDE=null,alignment \
-    -DTWINSLAM_BUILD_BENCHMARKS=OFF -DTWINSLAM_BUILD_INTEGRATION_TESTS=OFF
+  # The tree (clang, options and reasons in scripts/sanitize-options.sh) also holds the libFuzzer targets, which
+  # scripts/fuzz.sh runs without building again; here their committed corpora replay as fuzz_corpus_* tests.
+  source "$root/scripts/sanitize-options.sh"
+  build=$sanitize_build_dir
+  sanitize_prepare_build_dir
+  TWINSLAM_BUILD_DIR=$build bash "$root/scripts/setup.sh" "${sanitize_cmake_args[@]}"
   # new_delete_type_mismatch=0: Fast DDS 2.9 itself deletes its readers with a mismatched size
   # (RTPSReader::~RTPSReader via DataReaderImpl::stop, in libfastrtps.so.2.9, not our code); ASan has no per-library
   # suppression for that check.
