@@ -26,8 +26,9 @@ struct Declaration {
   bool declared_by_gnss_fit = false;  // in the step that set T_WL from a converged GNSS fit (not by registrations)
 };
 
-// GNSS as in fly() (no anchor); with `registrations`, every keyframe's LocalMap is answered by a registration of the
-// true pose (0.05 m, 0.1 deg, information times `information_scale`) as soon as T_WL is set, provisionally or not.
+// A GNSS fix (true position + 1 m noise per axis, L = W) every fourth frame; with `registrations`, every keyframe's
+// LocalMap is answered by a registration of the true pose (0.05 m, 0.1 deg, information times `information_scale`) as
+// soon as T_WL is set, provisionally or not.
 // With `alternate_m`, successive registrations put their keyframes alternately that far east and west of the truth
 // (ICP flipping between two solutions); `agreeing` is declare_agreeing_registrations.
 Declaration declare(const SimRun& run, bool registrations, double information_scale = 1.0, double alternate_m = 0.0,
