@@ -16,13 +16,13 @@ namespace {
 
 constexpr const char* kHeader =
     "stamp_ns,accepted,rmse_m,inliers,fitness,time_ms,ev1,ev2,ev3,ev4,ev5,ev6,dx_m,dy_m,dz_m,droll_deg,dpitch_deg,"
-    "dyaw_deg,latency_ms,pipeline_latency_ms,reason,kf_x_m,kf_y_m,kf_z_m,kf_qx,kf_qy,kf_qz,kf_qw\n";
+    "dyaw_deg,latency_ms,pipeline_latency_ms,reason,kf_x_m,kf_y_m,kf_z_m,kf_qx,kf_qy,kf_qz,kf_qw,sigma_m\n";
 
 // One registrations.csv row: accepted flag, correction (m, deg), keyframe pose (position, quaternion x y z w).
 std::string row(long long stamp, int accepted, const Eigen::Vector3d& dp, const Eigen::Vector3d& drpy_deg,
                 const std::string& kf) {
   char buf[400];
-  std::snprintf(buf, sizeof buf, "%lld,%d,0.2,100,0.8,4.0,1,2,3,4,5,6,%g,%g,%g,%g,%g,%g,3.0,5.0,%s,%s\n", stamp,
+  std::snprintf(buf, sizeof buf, "%lld,%d,0.2,100,0.8,4.0,1,2,3,4,5,6,%g,%g,%g,%g,%g,%g,3.0,5.0,%s,%s,0.1\n", stamp,
                 accepted, dp.x(), dp.y(), dp.z(), drpy_deg.x(), drpy_deg.y(), drpy_deg.z(),
                 accepted ? "accepted" : "rmse", kf.c_str());
   return buf;

@@ -35,6 +35,7 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   r.stamp_ns = 1'100'000'000LL;
   r.accepted = true;
   r.info_eigenvalues << 1, 2, 3, 4, 5, 6;
+  r.sigma_m = 0.25;
   const Eigen::Isometry3d T_WB_kf(Eigen::Translation3d(1, 2, 3) * Eigen::AngleAxisd(0.25, Eigen::Vector3d::UnitZ()));
   rec.local_map(r.stamp_ns, 500.0, 40, T_WB_kf);  // the estimator had a world alignment: the pose is in W
   rec.local_map(r.stamp_ns, 900.0, 40);  // a re-delivery: the first sighting counts
@@ -67,12 +68,13 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
   });
   EXPECT_EQ(rows, 6u);  // every frame has a timing row, estimated or not
   std::size_t regs = 0;
-  read_csv(dir / "registrations.csv", 28, [&](const CsvRow& row) {
+  read_csv(dir / "registrations.csv", 29, [&](const CsvRow& row) {
     if (row.line == 1) {
       EXPECT_EQ(row.cells[19], "pipeline_latency_ms");
       EXPECT_EQ(row.cells[20], "reason");
       EXPECT_EQ(row.cells[21], "kf_x_m");
       EXPECT_EQ(row.cells[27], "kf_qw");
+      EXPECT_EQ(row.cells[28], "sigma_m");
       return;
     }
     if (regs++ == 0) {
@@ -82,6 +84,7 @@ TEST(RunRecord, WritesTrajectoriesTimingAndRegistrations) {
       // The keyframe pose the LocalMap carried in W, which the correction applies to.
       EXPECT_DOUBLE_EQ(parse_double(dir / "registrations.csv", row, 22, "kf_y_m"), 2.0);
       EXPECT_NEAR(parse_double(dir / "registrations.csv", row, 26, "kf_qz"), std::sin(0.125), 1e-9);
+      EXPECT_DOUBLE_EQ(parse_double(dir / "registrations.csv", row, 28, "sigma_m"), 0.25);
     } else {
       EXPECT_EQ(row.cells[1], "0");
       EXPECT_EQ(row.cells[19], "");
@@ -110,7 +113,7 @@ TEST(RunRecord, ARegistrationRecordedBeforeItsLocalMapStillGetsTheKeyframePose) 
   fs::create_directories(dir);
   rec.write(dir);
   std::size_t rows = 0;
-  read_csv(dir / "registrations.csv", 28, [&](const CsvRow& row) {
+  read_csv(dir / "registrations.csv", 29, [&](const CsvRow& row) {
     if (row.line == 1) return;
     ++rows;
     EXPECT_DOUBLE_EQ(parse_double(dir / "registrations.csv", row, 21, "kf_x_m"), 4.0);

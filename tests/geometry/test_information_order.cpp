@@ -2,7 +2,10 @@
 // rotation): round trips are exact and each block lands where its meaning says.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+
+#include <Eigen/Eigenvalues>
 
 #include "twinslam/geometry/information_order.hpp"
 
@@ -55,6 +58,22 @@ TEST(InformationOrder, RowMajorMatchesTheIdlLayout) {
   const Matrix6d m = from_row_major(a);
   EXPECT_EQ(m(0, 1), 7.0);
   EXPECT_EQ(m(1, 0), 3.0);
+}
+
+TEST(InformationOrder, ObservedPositionSigmaIsTheLargestPositionSigmaAlongObservedDirections) {
+  Matrix6d wire = Matrix6d::Zero();
+  EXPECT_EQ(observed_position_sigma_m(wire), 0.0);  // nothing observed: no claim
+  // Full rank: 0.1 m along x, 0.5 m along y, 0.2 m along z, rotations 1e-4 rad^2.
+  wire.diagonal() << 1e4, 1e4, 1e4, 100.0, 4.0, 25.0;
+  EXPECT_NEAR(observed_position_sigma_m(wire), 0.5, 1e-12);
+  // One facade: only x observed (and rotation); y and z unobserved say nothing, the sigma is x's.
+  wire.diagonal() << 1e4, 1e4, 1e4, 100.0, 0.0, 0.0;
+  EXPECT_NEAR(observed_position_sigma_m(wire), 0.1, 1e-12);
+  // Rotation coupled with translation: the pseudo-inverse, not the inverse of the position block alone.
+  const Matrix6d full = random_information(3);
+  const Eigen::Matrix3d position = full.inverse().bottomRightCorner<3, 3>();
+  const double expected = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(position).eigenvalues().maxCoeff());
+  EXPECT_NEAR(observed_position_sigma_m(full), expected, 1e-9 * expected);
 }
 
 }  // namespace

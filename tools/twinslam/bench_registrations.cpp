@@ -13,7 +13,7 @@
 namespace twinslam::cli {
 namespace {
 
-constexpr std::size_t kColumns = 28;  // CONTRACTS.md "Run outputs": registrations.csv
+constexpr std::size_t kColumns = 29;  // CONTRACTS.md "Run outputs": registrations.csv
 constexpr std::size_t kAccepted = 1, kDx = 12, kDroll = 15, kKeyframe = 21;
 constexpr double kDegToRad = M_PI / 180.0;
 

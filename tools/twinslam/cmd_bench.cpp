@@ -145,7 +145,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       const auto tracking = column_median(timing, 4, 1), estimator = column_median(timing, 4, 2);
       std::optional<double> frame_ms;
       if (tracking && estimator) frame_ms = *tracking + *estimator;
-      times[mode] = {frame_ms, column_median(fs::path(run.out) / "registrations.csv", 28, 5)};
+      times[mode] = {frame_ms, column_median(fs::path(run.out) / "registrations.csv", 29, 5)};
       metrics[mode] = eval::to_json(results.back());
       if (const auto truth = evaluate_registrations(run.out, gt)) {
         registration_truth[mode] = *truth;

@@ -1,11 +1,13 @@
 #include "run_hooks.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
 
 #include "twinslam/dds/convert.hpp"
+#include "twinslam/geometry/information_order.hpp"
 
 namespace twinslam::cli {
 
@@ -31,6 +33,10 @@ RegistrationRecord to_record(const msg::Registration& m) {
   r.time_ms = m.compute_ms();
   r.latency_ms = m.latency_ms();
   for (int i = 0; i < 6; ++i) r.info_eigenvalues[i] = m.information_eigenvalues()[i];
+  std::array<double, 36> information{};
+  std::copy(m.information().begin(), m.information().end(), information.begin());
+  const geometry::Matrix6d I = geometry::from_row_major(information);
+  r.sigma_m = I.allFinite() ? geometry::observed_position_sigma_m(I) : std::nan("");
   // The correction of the keyframe's pose: its position moves by dT c - c (c = pivot), its attitude by dR.
   const Eigen::Isometry3d T = dds::from_msg(m.correction_W());
   const Eigen::Vector3d c = dds::from_msg(m.pivot_W());

@@ -171,7 +171,8 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
     std::ofstream f(dir / "registrations.csv");
     if (!f) throw InputError((dir / "registrations.csv").string() + ": cannot write");
     f << "stamp_ns,accepted,rmse_m,inliers,fitness,time_ms,ev1,ev2,ev3,ev4,ev5,ev6,dx_m,dy_m,dz_m,droll_deg,"
-         "dpitch_deg,dyaw_deg,latency_ms,pipeline_latency_ms,reason,kf_x_m,kf_y_m,kf_z_m,kf_qx,kf_qy,kf_qz,kf_qw\n";
+         "dpitch_deg,dyaw_deg,latency_ms,pipeline_latency_ms,reason,kf_x_m,kf_y_m,kf_z_m,kf_qx,kf_qy,kf_qz,kf_qw,"
+         "sigma_m\n";
     for (const auto& r : registrations_) {
       f << r.stamp_ns << ',' << (r.accepted ? 1 : 0) << ',' << r.rmse_m << ',' << r.inliers << ',' << r.fitness << ','
         << r.time_ms;
@@ -193,10 +194,11 @@ std::vector<std::filesystem::path> RunRecord::write(const std::filesystem::path&
         char pose[200];
         std::snprintf(pose, sizeof pose, ",%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f", p.x(), p.y(), p.z(), q.x(), q.y(), q.z(),
                       q.w());
-        f << pose << '\n';
+        f << pose;
       } else {
-        f << ",,,,,,,\n";
+        f << ",,,,,,,";
       }
+      f << ',' << r.sigma_m << '\n';
     }
     written.push_back(dir / "registrations.csv");
   }

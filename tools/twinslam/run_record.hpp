@@ -38,6 +38,9 @@ struct RegistrationRecord {
   // was not seen.
   double pipeline_latency_ms = 0;
   std::string reason;     // "accepted", or why it was rejected (one line, no commas written)
+  // The largest position sigma the registration's information states along the directions it observes
+  // (geometry::observed_position_sigma_m) [m]; 0 when it sent none (rejected).
+  double sigma_m = 0;
   // The keyframe pose T_WB the LocalMap carried (T_WL T_LB), when the estimator had a world alignment then (it sent
   // its covariance): what the correction applies to. Filled by registration() from the LocalMap seen here.
   std::optional<Eigen::Isometry3d> keyframe_T_WB;

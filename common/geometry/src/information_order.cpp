@@ -1,5 +1,10 @@
 #include "twinslam/geometry/information_order.hpp"
 
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
 namespace twinslam::geometry {
 namespace {
 
@@ -35,6 +40,20 @@ std::array<double, 36> to_row_major(const Matrix6d& m) {
   std::array<double, 36> a{};
   Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(a.data()) = m;
   return a;
+}
+
+double observed_position_sigma_m(const Matrix6d& information_rt) {
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(0.5 * (information_rt + information_rt.transpose()));
+  const double largest = eig.eigenvalues().maxCoeff();
+  if (!(largest > 0.0)) return 0.0;
+  Eigen::Matrix<double, 6, 1> inverse = Eigen::Matrix<double, 6, 1>::Zero();
+  for (int i = 0; i < 6; ++i) {
+    if (eig.eigenvalues()(i) > 1e-12 * largest) inverse(i) = 1.0 / eig.eigenvalues()(i);
+  }
+  const Matrix6d covariance = eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
+  const Eigen::Matrix3d position = covariance.bottomRightCorner<3, 3>();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> p(0.5 * (position + position.transpose()));
+  return std::sqrt(std::max(p.eigenvalues().maxCoeff(), 0.0));
 }
 
 }  // namespace twinslam::geometry

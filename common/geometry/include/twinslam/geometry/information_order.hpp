@@ -22,4 +22,9 @@ Eigen::Matrix<double, 6, 1> rotation_first_to_translation_first(const Eigen::Mat
 Matrix6d from_row_major(const std::array<double, 36>& a);
 std::array<double, 36> to_row_major(const Matrix6d& m);
 
+// The largest position sigma [m] that a (rotation, translation)-ordered information states along the directions it
+// observes: sqrt of the largest eigenvalue of the translation block of its pseudo-inverse (eigenvalues below 1e-12 x
+// the largest count as unobserved, so a rank-deficient registration says nothing along those). 0 for a zero matrix.
+double observed_position_sigma_m(const Matrix6d& information_rt);
+
 }  // namespace twinslam::geometry
