@@ -30,6 +30,7 @@ Vector6d dir(double wx, double wy, double wz, double vx, double vy, double vz) {
 Information analyse(const std::vector<Correspondence>& c) {
   RegistrationConfig config;  // adaptive, rigid: eq. (9)'s H (the scale's Schur complement: its own test below)
   config.estimate_scale = false;
+  config.surface_error_m = 0.0;  // independent points: H / sigma^2 (the per-surface model: test_surface_information)
   return compute_information(config, c, 0.1, 0.1);
 }
 

@@ -8,6 +8,7 @@
 
 #include "synthetic_twin.hpp"
 #include "twinslam/core/error.hpp"
+#include "twinslam/geometry/information_order.hpp"
 #include "twinslam/geometry/so3.hpp"
 #include "twinslam/registration/registration.hpp"
 
@@ -182,6 +183,17 @@ TEST(Registration, EveryRejectionReasonIsReachable) {
   EXPECT_EQ(status_of(c, in, tight), RegistrationStatus::kCorrectionTooLarge);
   Matrix6d loose = Matrix6d::Identity();  // 1 rad, 1 m: the correction is plausible
   EXPECT_EQ(status_of(c, in, loose), RegistrationStatus::kAccepted);
+  // The registration's own predicted position sigma: the accepted one states some; asked for ten times less, it is
+  // refused and the reason says by how much.
+  const RegistrationResult accepted = register_cloud(c, s.index, in);
+  const double sigma_m = geometry::observed_position_sigma_m(accepted.information);
+  ASSERT_GT(sigma_m, 0.0);
+  RegistrationConfig sure = c;
+  sure.max_position_sigma_m = 0.1 * sigma_m;
+  EXPECT_EQ(status_of(sure, in, {}, &why), RegistrationStatus::kDegenerate);
+  EXPECT_EQ(why.rfind("predicted position sigma ", 0), 0u) << why;
+  sure.max_position_sigma_m = 10.0 * sigma_m;
+  EXPECT_EQ(status_of(sure, in), RegistrationStatus::kAccepted);
 }
 
 TEST(Registration, CorridorIsAcceptedWithNoInformationAlongIt) {

@@ -3,33 +3,100 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 namespace twinslam::registration {
 namespace {
 
-// Eigen-analysis of Hn = S H_w S / n, n the summed weight (ascending); fills eigenvalues, directions, zeroed, and
-// returns the information with the zeroed directions removed: S^-1 (U L' U^T) S^-1 * n, i.e. H_w itself when nothing
-// is zeroed.
-Matrix6d analyse(const RegistrationConfig& config, double n, Information& info) {
-  Vector6d s;
-  s << Eigen::Vector3d::Constant(1.0 / info.length_scale_m), Eigen::Vector3d::Ones();
-  const Matrix6d Hn = s.asDiagonal() * info.H_weighted * s.asDiagonal() / n;
+// Eigen-analysis of Hn = S H_w S / n, n the summed weight (ascending); fills eigenvalues, directions, zeroed.
+struct Analysis {
+  Vector6d s;           // diag of S
+  Matrix6d U;           // eigenvectors of Hn (columns)
+  Vector6d kept;        // eigenvalues of Hn with the zeroed ones set to 0
+  double n = 1.0;       // summed weight
+  // The information with the zeroed directions removed: S^-1 (U kept U^T) S^-1 n, i.e. H_w itself when nothing is
+  // zeroed.
+  Matrix6d kept_information() const {
+    const Vector6d s_inv = s.cwiseInverse();
+    return s_inv.asDiagonal() * (U * kept.asDiagonal() * U.transpose()) * s_inv.asDiagonal() * n;
+  }
+};
+
+Analysis analyse(const RegistrationConfig& config, double n, Information& info) {
+  Analysis a;
+  a.n = n;
+  a.s << Eigen::Vector3d::Constant(1.0 / info.length_scale_m), Eigen::Vector3d::Ones();
+  const Matrix6d Hn = a.s.asDiagonal() * info.H_weighted * a.s.asDiagonal() / n;
   const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(0.5 * (Hn + Hn.transpose()));
   info.eigenvalues = eig.eigenvalues();
-  Vector6d kept = info.eigenvalues;
+  a.U = eig.eigenvectors();
+  a.kept = info.eigenvalues;
   for (int i = 0; i < 6; ++i) {
     info.zeroed[static_cast<std::size_t>(i)] = info.eigenvalues(i) < config.degeneracy_threshold;
     if (info.zeroed[static_cast<std::size_t>(i)]) {
-      kept(i) = 0.0;
+      a.kept(i) = 0.0;
       ++info.zero_directions;
     }
-    info.directions.col(i) = (s.asDiagonal() * eig.eigenvectors().col(i)).normalized();
+    info.directions.col(i) = (a.s.asDiagonal() * a.U.col(i)).normalized();
   }
-  const Matrix6d Hk = eig.eigenvectors() * kept.asDiagonal() * eig.eigenvectors().transpose();
-  const Vector6d s_inv = s.cwiseInverse();
-  return s_inv.asDiagonal() * Hk * s_inv.asDiagonal() * n;
+  return a;
+}
+
+// The rows A_j of eq. (9) with the log-scale eliminated when ICP estimated it: A~_j = A_j - (h / h_ss) (n . a)_j,
+// whose weighted sum of outer products is registration_hessian's Schur complement, so a change of the residuals moves
+// the pose as the 7-DoF solve does.
+std::vector<Vector6d> pose_rows(const std::vector<Correspondence>& inliers, bool marginalize_scale) {
+  std::vector<Vector6d> rows(inliers.size());
+  Vector6d h_scale = Vector6d::Zero();
+  double h_ss = 0.0;
+  for (std::size_t j = 0; j < inliers.size(); ++j) {
+    const Correspondence& k = inliers[j];
+    rows[j] << k.a.cross(k.n), k.n;
+    const double c = k.n.dot(k.a);
+    h_scale += k.weight * c * rows[j];
+    h_ss += k.weight * c * c;
+  }
+  if (marginalize_scale && h_ss > 0.0) {
+    for (std::size_t j = 0; j < inliers.size(); ++j) rows[j] -= h_scale * (inliers[j].n.dot(inliers[j].a) / h_ss);
+  }
+  return rows;
+}
+
+// adaptive with surface_error_m > 0 (information.hpp): on the kept directions B = S U_k (coordinates c = D^T xi,
+// D = S^-1 U_k, D^T B = I) the correction's covariance is B C B^T with C = L^-1 B^T M B L^-1, L = n diag(kept), and
+// the information D C^-1 D^T. With surface_error_m = 0 this is H_kept / sigma^2 exactly.
+Matrix6d surface_information(const RegistrationConfig& config, const std::vector<Correspondence>& inliers,
+                             const Analysis& a, double sigma_sq, Information& info) {
+  std::vector<int> kept_columns;
+  for (int i = 0; i < 6; ++i) {
+    if (a.kept(i) > 0.0) kept_columns.push_back(i);
+  }
+  if (kept_columns.empty()) return Matrix6d::Zero();
+  const int m = static_cast<int>(kept_columns.size());
+  Eigen::Matrix<double, 6, Eigen::Dynamic> B(6, m), D(6, m);
+  Eigen::VectorXd L(m);
+  for (int c = 0; c < m; ++c) {
+    B.col(c) = a.s.asDiagonal() * a.U.col(kept_columns[static_cast<std::size_t>(c)]);
+    D.col(c) = a.s.cwiseInverse().asDiagonal() * a.U.col(kept_columns[static_cast<std::size_t>(c)]);
+    L(c) = a.n * a.kept(kept_columns[static_cast<std::size_t>(c)]);
+  }
+  const std::vector<int> group =
+      group_surfaces(inliers, config.surface_group_angle_deg, config.surface_group_offset_m);
+  const std::vector<Vector6d> rows = pose_rows(inliers, config.estimate_scale);
+  info.surfaces = group.empty() ? 0 : *std::max_element(group.begin(), group.end()) + 1;
+  std::vector<Vector6d> G(static_cast<std::size_t>(info.surfaces), Vector6d::Zero());
+  for (std::size_t j = 0; j < inliers.size(); ++j) G[static_cast<std::size_t>(group[j])] += inliers[j].weight * rows[j];
+  Matrix6d M = sigma_sq * info.H_weighted;
+  const double surface_var = config.surface_error_m * config.surface_error_m;
+  for (const Vector6d& g : G) M.noalias() += surface_var * g * g.transpose();
+  const Eigen::VectorXd L_inv = L.cwiseInverse();
+  Eigen::MatrixXd C = L_inv.asDiagonal() * (B.transpose() * M * B) * L_inv.asDiagonal();
+  C = (0.5 * (C + C.transpose())).eval();
+  const Eigen::MatrixXd C_inv = C.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  return D * C_inv * D.transpose();
 }
 
 }  // namespace
@@ -64,7 +131,7 @@ Information compute_information(const RegistrationConfig& config, const std::vec
     weight += k.weight;
   }
   info.length_scale_m = std::max(1.0, std::sqrt(radius_sq / static_cast<double>(inliers.size())));
-  const Matrix6d H_kept = analyse(config, std::max(weight, 1e-12), info);
+  const Analysis analysis = analyse(config, std::max(weight, 1e-12), info);
   switch (config.weights) {
     case WeightMode::kPaper:
       info.sigma_sq = info.H.trace();
@@ -73,7 +140,9 @@ Information compute_information(const RegistrationConfig& config, const std::vec
     case WeightMode::kAdaptive: {
       const double sigma = std::max(robust_sigma_m, config.min_sigma_m);
       info.sigma_sq = sigma * sigma * config.correlation_inflation;
-      info.information = H_kept / info.sigma_sq;
+      info.information = config.surface_error_m > 0.0
+                             ? surface_information(config, inliers, analysis, info.sigma_sq, info)
+                             : Matrix6d(analysis.kept_information() / info.sigma_sq);
       break;
     }
     case WeightMode::kFixed:
@@ -84,6 +153,24 @@ Information compute_information(const RegistrationConfig& config, const std::vec
   }
   info.information = (0.5 * (info.information + info.information.transpose())).eval();  // exactly symmetric
   return info;
+}
+
+std::vector<int> group_surfaces(const std::vector<Correspondence>& inliers, double angle_deg, double offset_m) {
+  const double min_cos = std::cos(angle_deg * M_PI / 180.0);
+  std::vector<int> group(inliers.size(), -1);
+  std::vector<std::size_t> first;  // the first member of each group
+  for (std::size_t j = 0; j < inliers.size(); ++j) {
+    const Correspondence& k = inliers[j];
+    for (std::size_t g = 0; g < first.size() && group[j] < 0; ++g) {
+      const Correspondence& f = inliers[first[g]];
+      if (k.n.dot(f.n) > min_cos && std::abs(f.n.dot(k.b - f.b)) < offset_m) group[j] = static_cast<int>(g);
+    }
+    if (group[j] < 0) {
+      group[j] = static_cast<int>(first.size());
+      first.push_back(j);
+    }
+  }
+  return group;
 }
 
 }  // namespace twinslam::registration

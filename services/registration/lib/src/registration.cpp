@@ -9,6 +9,7 @@
 #include <Eigen/Cholesky>
 
 #include "twinslam/core/error.hpp"
+#include "twinslam/geometry/information_order.hpp"
 #include "twinslam/geometry/so3.hpp"
 #include "twinslam/registration/yaw_search.hpp"
 
@@ -77,6 +78,14 @@ bool reject_geometry(const RegistrationConfig& c, const std::optional<Matrix6d>&
     r.reason = fmt("%.0f poorly observed directions > max_zero_directions %.0f", r.details.zero_directions,
                    c.max_zero_directions);
     return false;
+  }
+  if (c.max_position_sigma_m > 0.0) {
+    const double sigma_m = geometry::observed_position_sigma_m(r.details.information);
+    if (sigma_m > c.max_position_sigma_m) {
+      r.status = RegistrationStatus::kDegenerate;
+      r.reason = fmt("predicted position sigma %.3f m > max_position_sigma_m %.3f m", sigma_m, c.max_position_sigma_m);
+      return false;
+    }
   }
   if (prior) {
     Matrix6d S = *prior;

@@ -62,12 +62,16 @@ const std::vector<Key>& keys() {
       {"correlation_inflation", &C::correlation_inflation},
       {"min_sigma_m", &C::min_sigma_m},
       {"degeneracy_threshold", &C::degeneracy_threshold},
+      {"surface_error_m", &C::surface_error_m},
+      {"surface_group_angle_deg", &C::surface_group_angle_deg},
+      {"surface_group_offset_m", &C::surface_group_offset_m},
       {"fixed_rotation_information", &C::fixed_rotation_information},
       {"fixed_translation_information", &C::fixed_translation_information},
       {"min_inliers", &C::min_inliers},
       {"min_fitness", &C::min_fitness},
       {"max_rmse_m", &C::max_rmse_m},
       {"max_zero_directions", &C::max_zero_directions},
+      {"max_position_sigma_m", &C::max_position_sigma_m},
       {"max_mahalanobis_sq", &C::max_mahalanobis_sq},
       {"mahalanobis_floor_m", &C::mahalanobis_floor_m},
       {"mahalanobis_floor_deg", &C::mahalanobis_floor_deg},
@@ -184,6 +188,10 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(pos(min_sigma_m), s, "min_sigma_m", "must be > 0 m", min_sigma_m);
   check(nonneg(degeneracy_threshold) && degeneracy_threshold < 1.0, s, "degeneracy_threshold", "must lie in [0, 1)",
         degeneracy_threshold);
+  check(nonneg(surface_error_m), s, "surface_error_m", "must be >= 0 m (0: off)", surface_error_m);
+  check(pos(surface_group_angle_deg) && surface_group_angle_deg < 90.0, s, "surface_group_angle_deg",
+        "must lie in (0, 90) deg", surface_group_angle_deg);
+  check(pos(surface_group_offset_m), s, "surface_group_offset_m", "must be > 0 m", surface_group_offset_m);
   check(pos(fixed_rotation_information), s, "fixed_rotation_information", "must be > 0", fixed_rotation_information);
   check(pos(fixed_translation_information), s, "fixed_translation_information", "must be > 0",
         fixed_translation_information);
@@ -192,6 +200,7 @@ void RegistrationConfig::validate(const std::string& s) const {
   check(pos(max_rmse_m), s, "max_rmse_m", "must be > 0 m", max_rmse_m);
   check(max_zero_directions >= 0 && max_zero_directions <= 6, s, "max_zero_directions", "must lie in [0, 6]",
         max_zero_directions);
+  check(nonneg(max_position_sigma_m), s, "max_position_sigma_m", "must be >= 0 m (0: off)", max_position_sigma_m);
   check(pos(max_mahalanobis_sq), s, "max_mahalanobis_sq", "must be > 0", max_mahalanobis_sq);
   check(nonneg(mahalanobis_floor_m), s, "mahalanobis_floor_m", "must be >= 0 m", mahalanobis_floor_m);
   check(nonneg(mahalanobis_floor_deg), s, "mahalanobis_floor_deg", "must be >= 0 deg", mahalanobis_floor_deg);

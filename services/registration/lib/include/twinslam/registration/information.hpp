@@ -36,7 +36,14 @@ struct Information {
   int zero_directions = 0;                  // how many are zeroed
   double length_scale_m = 1.0;              // L (at least 1 m)
   double sigma_sq = 0.0;                    // paper: trace(H) (eq. 10's sigma^2); adaptive: the residual variance [m^2]
+  int surfaces = 0;                         // twin planes the inliers lie on (adaptive with surface_error_m > 0)
 };
+
+// Groups inliers by the twin plane they matched: an inlier joins the first group whose first member's normal is within
+// angle_deg of its own and whose plane (that member's n and b) passes within offset_m of its b; otherwise it starts a
+// group. Returns each inlier's group, numbered 0, 1, ... in order of first appearance. Opposite normals (the two sides
+// of a wall) are different surfaces.
+std::vector<int> group_surfaces(const std::vector<Correspondence>& inliers, double angle_deg, double offset_m);
 
 // eq. (8)-(9): sum of A_j^T A_j over the correspondences; `weighted`: of w_j A_j^T A_j.
 // marginalize_scale: with a 7-DoF ICP (RegistrationConfig::estimate_scale), the Schur complement over the log-scale.
@@ -46,7 +53,11 @@ Matrix6d registration_hessian(const std::vector<Correspondence>& inliers, bool w
 // Weights `inliers` (at the converged correction) as config.weights says:
 //   paper:    beta / trace(H) * exp(-rmse^2 / 2) * H                                       (eq. 10 as written)
 //   adaptive: H_w / sigma^2 with sigma^2 = max(robust_sigma, min_sigma)^2 * correlation_inflation, and the eigen-
-//             directions of Hn below degeneracy_threshold removed (information exactly 0 along them)
+//             directions of Hn below degeneracy_threshold removed (information exactly 0 along them). With
+//             surface_error_m > 0, the inverse of the covariance the correction has when, besides that independent
+//             noise, every twin plane the inliers lie on (group_surfaces) is offset along its normal by its own
+//             N(0, surface_error_m^2): Cov = H_w^+ (surface_error_m^2 sum_k G_k G_k^T + sigma^2 H_w) H_w^+ on the kept
+//             directions, G_k = sum_{j on plane k} w_j A_j (the correction's response to plane k moving by 1 m)
 //   fixed:    diag(fixed_rotation_information x3, fixed_translation_information x3)
 // robust_sigma_m: the robust sigma of the inliers' weighted residuals (IcpResult::sigma_m). Empty input gives all
 // zeros.

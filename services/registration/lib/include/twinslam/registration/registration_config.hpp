@@ -96,6 +96,18 @@ struct RegistrationConfig {
   double correlation_inflation = 40.0;
   double min_sigma_m = 0.02;            // adaptive: floor of the residual sigma [m] (noise-free input stays finite)
   double degeneracy_threshold = 0.01;   // eigenvalue of the per-point normalized H below this: direction zeroed [-]
+  // adaptive: the twin's own error per planar surface [m]. A twin's facade, roof or street is usually off as a whole
+  // (a survey or modelling error of that surface), so the landmarks on one surface are not independent looks: with
+  // this > 0 the inliers are grouped by the twin plane they matched (normals within surface_group_angle_deg, plane
+  // offsets within surface_group_offset_m) and each plane's offset, N(0, this^2), is propagated to the correction
+  // (information.hpp). A registration that rests on a few surfaces then weighs, and is judged, as uncertain as the
+  // twin makes it. 0: off (the residual variance x correlation_inflation alone). 0.2 by measurement (vio-twin ATE_p
+  // over city-loops with ideal and with tracked images, city-survey, delft-loops, city-long, tiny and the four
+  // wrong-twin scenarios, summed: 2.825 m off, 2.677 m at 0.2, 2.613 m at 0.3 - but at 0.3 the removed-building twin
+  // drew 29 of 59 accepted registrations > 0.5 m off, none at 0.2 -, 0.5 worse on city-loops and city-survey).
+  double surface_error_m = 0.2;
+  double surface_group_angle_deg = 10.0;  // [deg] normals of one plane differ by less than this
+  double surface_group_offset_m = 0.3;    // [m] ... and their planes' offsets by less than this
   double fixed_rotation_information = 1e4;     // fixed: diagonal for rotation [1/rad^2]
   double fixed_translation_information = 1e2;  // fixed: diagonal for translation [1/m^2]
 
@@ -105,6 +117,9 @@ struct RegistrationConfig {
   double max_rmse_m = 1.0;            // inlier point-to-plane RMSE above this: rejected [m] (0.3 and 0.5 refused
                                       // most VIO clouds on city-long / city-survey; the weight falls with the RMSE)
   int max_zero_directions = 2;        // more poorly observed directions than this: rejected (degenerate)
+  // The registration's own predicted position sigma along the directions it observes (the largest; from the pseudo-
+  // inverse of its information, geometry::observed_position_sigma_m) above this: rejected [m]. 0: off.
+  double max_position_sigma_m = 0.0;
   double max_mahalanobis_sq = 22.46;  // correction vs the estimator's covariance: chi^2(6 dof) at 99.9 %
   // ... whose diagonal gets the registration's own uncertainty first (the twin's modelling error, ICP noise), so a
   // confident estimator does not reject corrections smaller than what registration can resolve:
