@@ -3,23 +3,13 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "plane_correspondences.hpp"
 #include "twinslam/registration/information.hpp"
 
 namespace twinslam::registration {
 namespace {
 
-// Noise-free correspondences (a = b) on the plane through `o` with normal `n`, on a 10 m x 10 m grid, relative to
-// the pivot c = (0, 0, 0): the keyframe is 5-10 m from every plane, as in a street.
-void plane(std::vector<Correspondence>& out, const Eigen::Vector3d& o, const Eigen::Vector3d& u,
-           const Eigen::Vector3d& v) {
-  const Eigen::Vector3d n = u.cross(v).normalized();
-  for (int i = 0; i <= 10; ++i) {
-    for (int j = 0; j <= 10; ++j) {
-      const Eigen::Vector3d p = o + 0.1 * i * u + 0.1 * j * v;
-      out.push_back({p, p, n, 0.0, 0.0});
-    }
-  }
-}
+using test::plane;  // plane_correspondences.hpp: the keyframe 5-10 m from every plane, as in a street
 
 Vector6d dir(double wx, double wy, double wz, double vx, double vy, double vz) {
   Vector6d d;

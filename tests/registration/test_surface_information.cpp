@@ -8,23 +8,14 @@
 
 #include <Eigen/Cholesky>
 
+#include "plane_correspondences.hpp"
 #include "twinslam/geometry/information_order.hpp"
 #include "twinslam/registration/information.hpp"
 
 namespace twinslam::registration {
 namespace {
 
-// Noise-free correspondences (a = b) on an 11 x 11 grid spanning u and v from o, relative to the pivot at 0.
-void plane(std::vector<Correspondence>& out, const Eigen::Vector3d& o, const Eigen::Vector3d& u,
-           const Eigen::Vector3d& v) {
-  const Eigen::Vector3d n = u.cross(v).normalized();
-  for (int i = 0; i <= 10; ++i) {
-    for (int j = 0; j <= 10; ++j) {
-      const Eigen::Vector3d p = o + 0.1 * i * u + 0.1 * j * v;
-      out.push_back({p, p, n, 0.0, 0.0});
-    }
-  }
-}
+using test::plane;  // plane_correspondences.hpp: the keyframe 5-10 m from every plane, as in a street
 
 // A street corner: ground 8 m below, a wall on either side, a facade ahead; four surfaces, every direction observed.
 std::vector<Correspondence> street_corner() {
