@@ -45,22 +45,39 @@ Analysis analyse(const RegistrationConfig& config, double n, Information& info) 
   return a;
 }
 
-// The rows A_j of eq. (9) with the log-scale eliminated when ICP estimated it: A~_j = A_j - (h / h_ss) (n . a)_j,
-// whose weighted sum of outer products is registration_hessian's Schur complement, so a change of the residuals moves
-// the pose as the 7-DoF solve does.
-std::vector<Vector6d> pose_rows(const std::vector<Correspondence>& inliers, bool marginalize_scale) {
-  std::vector<Vector6d> rows(inliers.size());
+// Row A_j of eq. (9) for one correspondence; eq. (9) has A_j = -[(a x n)^T, n^T]: the sign cancels in every product
+// used here.
+Vector6d jacobian_row(const Correspondence& k) {
+  Vector6d A;
+  A << k.a.cross(k.n), k.n;
+  return A;
+}
+
+// The 7 x 7 Hessian's coupling of the pose with ICP's log-scale (column n . a): sum w c A_j and sum w c^2.
+struct ScaleCoupling {
   Vector6d h_scale = Vector6d::Zero();
   double h_ss = 0.0;
-  for (std::size_t j = 0; j < inliers.size(); ++j) {
-    const Correspondence& k = inliers[j];
-    rows[j] << k.a.cross(k.n), k.n;
+};
+ScaleCoupling scale_coupling(const std::vector<Correspondence>& inliers, bool weighted) {
+  ScaleCoupling s;
+  for (const Correspondence& k : inliers) {
+    const double w = weighted ? k.weight : 1.0;
     const double c = k.n.dot(k.a);
-    h_scale += k.weight * c * rows[j];
-    h_ss += k.weight * c * c;
+    s.h_scale.noalias() += w * c * jacobian_row(k);
+    s.h_ss += w * c * c;
   }
-  if (marginalize_scale && h_ss > 0.0) {
-    for (std::size_t j = 0; j < inliers.size(); ++j) rows[j] -= h_scale * (inliers[j].n.dot(inliers[j].a) / h_ss);
+  return s;
+}
+
+// The rows A_j with the log-scale eliminated when ICP estimated it: A~_j = A_j - (h / h_ss) (n . a)_j, whose weighted
+// sum of outer products is registration_hessian's Schur complement, so a change of the residuals moves the pose as
+// the 7-DoF solve does.
+std::vector<Vector6d> pose_rows(const std::vector<Correspondence>& inliers, bool marginalize_scale) {
+  std::vector<Vector6d> rows(inliers.size());
+  for (std::size_t j = 0; j < inliers.size(); ++j) rows[j] = jacobian_row(inliers[j]);
+  const ScaleCoupling s = scale_coupling(inliers, true);
+  if (marginalize_scale && s.h_ss > 0.0) {
+    for (std::size_t j = 0; j < inliers.size(); ++j) rows[j] -= s.h_scale * (inliers[j].n.dot(inliers[j].a) / s.h_ss);
   }
   return rows;
 }
@@ -103,19 +120,15 @@ Matrix6d surface_information(const RegistrationConfig& config, const std::vector
 
 Matrix6d registration_hessian(const std::vector<Correspondence>& inliers, bool weighted, bool marginalize_scale) {
   Matrix6d H = Matrix6d::Zero();
-  Vector6d h_scale = Vector6d::Zero();  // cross terms with the log-scale column n . a
-  double h_ss = 0.0;
   for (const Correspondence& k : inliers) {
-    Vector6d A;  // eq. (9) has A_j = -[(a x n)^T, n^T]; the sign cancels in A^T A
-    A << k.a.cross(k.n), k.n;
-    const double w = weighted ? k.weight : 1.0;
-    H.noalias() += w * A * A.transpose();
-    const double scale_column = k.n.dot(k.a);
-    h_scale.noalias() += w * scale_column * A;
-    h_ss += w * scale_column * scale_column;
+    const Vector6d A = jacobian_row(k);
+    H.noalias() += (weighted ? k.weight : 1.0) * A * A.transpose();
   }
   // The pose's information with the scale unknown: the Schur complement of the 7 x 7 Hessian over the scale.
-  if (marginalize_scale && h_ss > 0.0) H -= h_scale * h_scale.transpose() / h_ss;
+  if (marginalize_scale) {
+    const ScaleCoupling s = scale_coupling(inliers, weighted);
+    if (s.h_ss > 0.0) H -= s.h_scale * s.h_scale.transpose() / s.h_ss;
+  }
   return 0.5 * (H + H.transpose());  // Eigen's product kernel is not bit-symmetric; the factor must be
 }
 
