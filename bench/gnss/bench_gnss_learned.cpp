@@ -1,10 +1,11 @@
 // bench_gnss_learned [--scenario NAME|FILE] [--seeds N] [--first-seed S] [--positions P] [--out DIR]:
 // `gnss.model: raytrace` against `gnss.model: learned` along the scenario's flight (its city and flight built once from
 // the scenario's seed), for the scenario's seed and N - 1 further seeds of the GNSS models (S, S + 1, ...; S = 101;
-// the learned model is trained anew for each, as `twinslam sim` would, on P positions, default 1500). Prints per seed and band the horizontal error mean and 95th percentile of both (and the
-// vertical median), then the averages, how many same-seed pairs agree within 25 % on both numbers, and - as the
-// criterion's noise floor - how many ray-traced runs of other seeds agree with the scenario seed's ray-traced run;
-// last the statistics of all draws' fixes pooled per band.
+// the learned model is trained anew for each, as `twinslam sim` would, on P positions, default 1500). Prints per seed
+// and band the horizontal error mean and 95th percentile of both (and the vertical median), then the averages, how
+// many same-seed pairs agree within 25 % on both numbers, and - as the criterion's noise floor - how many ray-traced
+// runs of other seeds agree with the scenario seed's ray-traced run; last the statistics of all draws' fixes pooled
+// per band.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -60,12 +61,12 @@ int main(int argc, char** argv) {
   std::printf("%-5s %-6s %28s %28s\n", "seed", "band", "raytrace mean / p95 / v med", "learned mean / p95 / v med");
   for (int k = 0; k < seeds; ++k) {
     const std::uint64_t seed = k == 0 ? s.seed : first_seed + static_cast<std::uint64_t>(k - 1);
-    const auto r = samples(simulate_gnss_raytrace(stamps, p_W, s.origin, world, seed));
-    const auto l = samples(run_learned_gnss(out, stamps, p_W, city.hints, s.origin, world, seed, training));
-    rt.push_back(gnss::errors_by_height(r));
-    learned.push_back(gnss::errors_by_height(l));
-    rt_pooled.insert(rt_pooled.end(), r.begin(), r.end());
-    learned_pooled.insert(learned_pooled.end(), l.begin(), l.end());
+    const auto rt_fixes = samples(simulate_gnss_raytrace(stamps, p_W, s.origin, world, seed));
+    const auto learned_fixes = samples(run_learned_gnss(out, stamps, p_W, city.hints, s.origin, world, seed, training));
+    rt.push_back(gnss::errors_by_height(rt_fixes));
+    learned.push_back(gnss::errors_by_height(learned_fixes));
+    rt_pooled.insert(rt_pooled.end(), rt_fixes.begin(), rt_fixes.end());
+    learned_pooled.insert(learned_pooled.end(), learned_fixes.begin(), learned_fixes.end());
     for (std::size_t b = 0; b < rt.back().size(); ++b) {
       if (rt.back()[b].fixes == 0) continue;
       const auto& r = rt.back()[b];

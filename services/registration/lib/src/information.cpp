@@ -75,8 +75,9 @@ ScaleCoupling scale_coupling(const std::vector<Correspondence>& inliers, bool we
 std::vector<Vector6d> pose_rows(const std::vector<Correspondence>& inliers, bool marginalize_scale) {
   std::vector<Vector6d> rows(inliers.size());
   for (std::size_t j = 0; j < inliers.size(); ++j) rows[j] = jacobian_row(inliers[j]);
+  if (!marginalize_scale) return rows;
   const ScaleCoupling s = scale_coupling(inliers, true);
-  if (marginalize_scale && s.h_ss > 0.0) {
+  if (s.h_ss > 0.0) {
     for (std::size_t j = 0; j < inliers.size(); ++j) rows[j] -= s.h_scale * (inliers[j].n.dot(inliers[j].a) / s.h_ss);
   }
   return rows;
